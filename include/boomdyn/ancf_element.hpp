@@ -1,0 +1,55 @@
+// Planar ANCF cable element (model.md §1.1): pure kernels, no PETSc.
+//
+// Element vector e = [r_1, r'_1, r_2, r'_2] (8 entries), cubic Hermite shape
+// functions in xi = x/l. Energy U = 1/2 ∫ EA eps^2 + EI K^2 dx with Green
+// axial strain eps = (|r'|^2 - 1)/2 and material curvature K = (r' x r'')/|r'|^2.
+// Sign convention: the kernels return the internal force f = dU/de and the
+// tangent stiffness K = d^2U/de^2 (symmetric); the generalized elastic force
+// of the paper is Q_k = -f.
+#pragma once
+
+#include <Eigen/Dense>
+
+namespace boomdyn::ancf {
+
+using Vec2 = Eigen::Vector2d;
+using Vec8 = Eigen::Matrix<double, 8, 1>;
+using Mat8 = Eigen::Matrix<double, 8, 8>;
+using Mat28 = Eigen::Matrix<double, 2, 8>;
+
+struct Section {
+  double EA = 0, EI = 0, rhoA = 0;
+};
+
+// Shape function values S1..S4 and their x-derivatives (order 0..3) at xi.
+// S(x) = [S1 I, S2 I, S3 I, S4 I] (2x8).
+Eigen::Vector4d shapeValues(double xi, double l, int derivative);
+Mat28 shapeMatrix(double xi, double l, int derivative = 0);
+
+// Centerline quantities at xi: r and its x-derivatives up to order 3.
+Vec2 position(const Vec8 &e, double xi, double l, int derivative = 0);
+
+// Consistent mass matrix  ∫ rhoA S^T S dx  (exact, closed form).
+Mat8 massMatrix(double rhoA, double l);
+// Gravity force ∫ rhoA S^T g dx (exact).
+Vec8 gravityForce(double rhoA, double l, const Vec2 &g);
+
+// Strain energy of the element (Gauss quadrature, kGaussPoints points).
+double strainEnergy(const Section &sec, double l, const Vec8 &e);
+// Internal force f = dU/de and, if K != nullptr, tangent K = d^2U/de^2.
+void internalForce(const Section &sec, double l, const Vec8 &e, Vec8 &f, Mat8 *K);
+
+// Axial strain and material curvature at xi (for output and tests).
+double axialStrain(const Vec8 &e, double xi, double l);
+double curvature(const Vec8 &e, double xi, double l);
+
+// Element vector of a straight, unstrained element from p0 along unit dir.
+Vec8 straightElement(const Vec2 &p0, const Vec2 &dir, double l);
+
+// Gauss points per element for the elastic forces. The axial energy is a
+// polynomial of degree 8 in xi (exact with 5 points); the curvature term is
+// rational and 5 points keep its quadrature error far below the
+// discretization error of the cubic interpolation.
+constexpr int kGaussPoints = 5;
+
+} // namespace boomdyn::ancf

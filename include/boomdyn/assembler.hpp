@@ -1,0 +1,68 @@
+// Assembly of the residual and Jacobian of the saddle-point system into
+// PETSc objects. Each rank evaluates the work items whose first coordinate
+// it owns; the values they need arrive through one VecScatter into a local
+// array, residuals return by a reverse scatter (ADD), and Jacobian blocks go
+// through MatSetValuesCOO on a pattern preallocated exactly once from the
+// items' dof lists (petsc-notes, trap 1 and 2: one pattern, never mixed with
+// MatSetValues).
+#pragma once
+
+#include "boomdyn/model.hpp"
+#include "boomdyn/work_item.hpp"
+
+#include <petscmat.h>
+#include <petscvec.h>
+
+#include <vector>
+
+namespace boomdyn {
+
+class Assembler {
+public:
+  explicit Assembler(const Model &model) : model_(model) {}
+  ~Assembler();
+  Assembler(const Assembler &) = delete;
+  Assembler &operator=(const Assembler &) = delete;
+
+  PetscErrorCode setUp(MPI_Comm comm);
+  // A vector with the layout of x = [q | lambda_hat].
+  PetscErrorCode createVector(Vec *x) const;
+  // An MPIAIJ matrix with the exact preallocation of the Jacobian.
+  PetscErrorCode createMatrix(Mat *J) const;
+  // Constant parts of the affine map q = qc + cQ x, v = vc + cV x,
+  // a = ac + cA x (layout of x; multiplier entries ignored). Null = zero.
+  PetscErrorCode setOffsets(Vec qc, Vec vc, Vec ac);
+  // Residual into F and Jacobian into J (either may be null).
+  PetscErrorCode evaluate(const AssemblyContext &ctx, Vec x, Vec F, Mat J);
+  // Energy and max |C| over all constraint rows at the state given by x
+  // through the affine map.
+  PetscErrorCode diagnostics(const AssemblyContext &ctx, Vec x, EnergyParts *energy, PetscReal *maxViolation);
+  // Mean diagonal of mass and stiffness over position coordinates at q = x.
+  PetscErrorCode characteristicScales(Vec x, PetscReal *mass, PetscReal *stiffness);
+
+  const Model &model() const { return model_; }
+  MPI_Comm comm() const { return comm_; }
+  PetscInt numLocalItems() const { return static_cast<PetscInt>(items_.size()); }
+  // Index set of the coordinates (not multipliers) owned by this rank, in x's layout.
+  PetscErrorCode coordinateRange(PetscInt *begin, PetscInt *end) const;
+
+private:
+  PetscErrorCode scatterAndMap(const AssemblyContext &ctx, Vec x);
+  void gather(std::size_t k, ItemValues &vals);
+
+  const Model &model_;
+  MPI_Comm comm_ = MPI_COMM_NULL;
+  Vec xTemplate_ = nullptr, xLocal_ = nullptr, fLocal_ = nullptr;
+  VecScatter scatter_ = nullptr;
+  std::vector<const WorkItem *> items_;
+  std::vector<int> itemStart_, itemCoords_; // offsets into itemLocal_; coordinate counts
+  std::vector<PetscInt> itemLocal_;         // local indices of each item's dofs
+  std::vector<PetscCount> cooStart_;
+  std::vector<PetscInt> cooI_, cooJ_;
+  std::vector<PetscScalar> cooV_;
+  std::vector<double> qc_, vc_, ac_;  // local offsets
+  std::vector<double> q_, v_, a_;     // local mapped values
+  std::vector<double> bq_, bv_, ba_, bl_, br_, bJ_; // per-item buffers
+};
+
+} // namespace boomdyn

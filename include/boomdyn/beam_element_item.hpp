@@ -1,0 +1,29 @@
+// One ANCF element of a beam as an assembly work item: inertia, elastic
+// forces and gravity with their Jacobian cA M + cQ K.
+#pragma once
+
+#include "boomdyn/ancf_beam.hpp"
+#include "boomdyn/work_item.hpp"
+
+#include <memory>
+
+namespace boomdyn {
+
+class BeamElementItem : public WorkItem {
+public:
+  // mass: the element mass matrix, shared by all elements of the beam.
+  BeamElementItem(const AncfBeam &beam, int element, std::shared_ptr<const ancf::Mat8> mass, const Vec2 &gravity);
+  std::string name() const override;
+  void coordinates(std::vector<PetscInt> &dofs) const override;
+  void evaluate(const AssemblyContext &ctx, const ItemValues &in, double *residual, double *J) const override;
+  void energy(const AssemblyContext &ctx, const ItemValues &in, EnergyParts &e) const override;
+  void scales(const ItemValues &in, double &massDiag, double &stiffDiag, int &count) const override;
+
+private:
+  const AncfBeam *beam_;
+  int element_;
+  std::shared_ptr<const ancf::Mat8> mass_;
+  ancf::Vec8 gravity_; // generalized gravity force of the element
+};
+
+} // namespace boomdyn

@@ -1,0 +1,20 @@
+// -log_view events around the phases of a run.
+#pragma once
+
+#include <petscsys.h>
+
+namespace boomdyn {
+
+struct LogEvents {
+  PetscLogEvent assembly = 0;  // residual and Jacobian of the saddle-point system
+  PetscLogEvent step = 0;      // one accepted or rejected time step (Newton solve inside)
+  PetscLogEvent statics = 0;   // static solve
+  PetscLogEvent eigen = 0;     // eigen-analysis
+  PetscLogEvent output = 0;    // sensors and HDF5 output
+};
+
+// Registered once per process (idempotent).
+PetscErrorCode registerLogEvents();
+const LogEvents &logEvents();
+
+} // namespace boomdyn

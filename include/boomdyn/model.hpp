@@ -1,0 +1,63 @@
+// The Model: bodies, constraints, loads and masses built from a Scene, and
+// the layout of the unknowns x = [q | lambda]. Every rank builds the whole
+// Model (it is metadata and small kernels); the Assembler decides which rank
+// evaluates which work item.
+#pragma once
+
+#include "boomdyn/body.hpp"
+#include "boomdyn/constraint_item.hpp"
+#include "boomdyn/scene.hpp"
+#include "boomdyn/work_item.hpp"
+
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace boomdyn {
+
+class ModelError : public std::runtime_error {
+public:
+  using std::runtime_error::runtime_error;
+};
+
+struct Sensor {
+  std::string name;
+  const Body *body = nullptr;
+  double s = 0;
+};
+
+class Model {
+public:
+  // Throws ModelError (message names the scene file, line and key) when the
+  // scene is consistent as data but not as a mechanism, e.g. a constraint
+  // violated by the initial configuration.
+  explicit Model(const Scene &scene);
+
+  PetscInt numCoordinates() const { return nq_; }
+  PetscInt numMultipliers() const { return nlambda_; }
+  PetscInt size() const { return nq_ + nlambda_; }
+
+  const std::vector<std::unique_ptr<Body>> &bodies() const { return bodies_; }
+  const Body *findBody(const std::string &name) const;
+  const std::vector<std::unique_ptr<WorkItem>> &items() const { return items_; }
+  const std::vector<const ConstraintItem *> &constraints() const { return constraints_; }
+  const std::vector<Sensor> &sensors() const { return sensors_; }
+  const Scene &scene() const { return scene_; }
+  // Initial coordinates (undeformed bodies as placed in the scene), size nq.
+  std::vector<double> initialCoordinates() const;
+
+private:
+  void addConstraint(std::shared_ptr<Constraint> c, const SourceMark &mark);
+  void checkInitialConfiguration() const;
+
+  Scene scene_;
+  PetscInt nq_ = 0, nlambda_ = 0;
+  std::vector<std::unique_ptr<Body>> bodies_;
+  std::vector<std::unique_ptr<WorkItem>> items_;
+  std::vector<const ConstraintItem *> constraints_;
+  std::vector<SourceMark> constraintMarks_;
+  std::vector<Sensor> sensors_;
+};
+
+} // namespace boomdyn

@@ -1,0 +1,126 @@
+// A scene as validated plain data: what the scene file says, in SI units
+// (angles in radians), with nothing derived. The reader (io/scene_reader)
+// fills it and rejects bad input; the Model is built from it. Nothing
+// downstream reads the YAML text again, except to store it in the output.
+#pragma once
+
+#include "boomdyn/time_function.hpp"
+
+#include <array>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace boomdyn {
+
+using Vec2d = std::array<double, 2>;
+
+// Where a value came from, for messages raised after parsing.
+struct SourceMark {
+  std::string file;
+  int line = 0; // 1-based, 0 = unknown
+  std::string key;
+};
+
+struct SectionSpec {
+  double EA = 0;   // axial stiffness, N
+  double EI = 0;   // bending stiffness, N m^2
+  double rhoA = 0; // mass per length, kg/m
+};
+
+struct BodySpec {
+  enum class Type { AncfBeam, Rigid };
+  std::string name;
+  Type type = Type::AncfBeam;
+  double length = 0;  // m
+  int elements = 1;   // ANCF beams only
+  Vec2d origin{0, 0}; // position of s = 0 in the initial configuration, m
+  double angle = 0;   // initial direction of the axis, rad (counter-clockwise from x)
+  SectionSpec section;
+  SourceMark mark;
+};
+
+// A material point: body name and material coordinate s in [0, length].
+struct PointRef {
+  std::string body;
+  double s = 0;
+};
+
+struct ConstraintSpec {
+  // pin:         r_a(s_a) = ground point, or r_a(s_a) = r_b(s_b)
+  // angle_drive: the tangent of body a at s_a points along theta(t)
+  // clamp:       pin to ground + angle_drive (expanded by the Model)
+  enum class Type { Pin, AngleDrive, Clamp };
+  Type type = Type::Pin;
+  std::string name;
+  PointRef a;
+  std::optional<PointRef> b; // pin between bodies; absent: to ground
+  Vec2d ground{0, 0};        // ground point, m (pin/clamp to ground)
+  TimeFunction angle;        // rad (angle_drive/clamp)
+  SourceMark mark;
+};
+
+struct PointForceSpec {
+  std::string name;
+  PointRef at;
+  Vec2d force{0, 0};  // N, global frame, multiplied by scale(t)
+  TimeFunction scale = TimeFunction::constant(1.0);
+  SourceMark mark;
+};
+
+struct PointMassSpec {
+  std::string name;
+  PointRef at;
+  double mass = 0; // kg
+  SourceMark mark;
+};
+
+struct SensorSpec {
+  std::string name;
+  PointRef at;
+};
+
+struct DynamicSpec {
+  double t_end = 1.0;     // s
+  double dt = 1e-3;       // s
+  double dt_min = 1e-9;   // s; a step cut below this stops the run
+  double rho_inf = 0.8;   // spectral radius at infinity, in [0, 1]
+  int max_newton = 25;
+};
+
+struct StaticSpec {
+  int load_steps = 1; // equal increments of the load factor
+  double time = 0;    // time at which time functions are evaluated
+};
+
+struct ModalSpec {
+  int count = 0;           // 0: no eigen-analysis
+  std::string at = "end";  // "start" (initial state) or "end" (after static/dynamic solve)
+};
+
+struct OutputSpec {
+  double state_interval = 0; // s; 0: full state at the first and last step only
+  std::vector<SensorSpec> sensors;
+};
+
+struct Scene {
+  std::string file; // path as given
+  std::string text; // full file text, stored in the output
+  std::string name;
+  std::string description;
+  enum class Analysis { Static, Dynamic, Modal };
+  Analysis analysis = Analysis::Dynamic;
+  Vec2d gravity{0, 0}; // m/s^2
+  std::vector<BodySpec> bodies;
+  std::vector<ConstraintSpec> constraints;
+  std::vector<PointForceSpec> forces;
+  std::vector<PointMassSpec> masses;
+  DynamicSpec dynamic;
+  StaticSpec statics;
+  ModalSpec modal;
+  OutputSpec output;
+
+  const BodySpec *findBody(const std::string &name) const;
+};
+
+} // namespace boomdyn

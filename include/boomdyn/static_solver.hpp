@@ -1,0 +1,41 @@
+// Static equilibrium f_int(q) - load * Q_ext + C_q^T lambda = 0, C(q, t) = 0 by
+// Newton (SNES) with load stepping: the load factor goes from 0 to 1 in equal
+// increments; an increment that fails is halved and retried (up to a limit),
+// and a final failure is reported, never accepted.
+#pragma once
+
+#include "boomdyn/newton_solver.hpp"
+
+#include <functional>
+
+namespace boomdyn {
+
+struct LoadStepInfo {
+  double loadFactor;
+  PetscInt iterations;
+};
+
+class StaticSolver {
+public:
+  explicit StaticSolver(Assembler &assembler) : assembler_(assembler) {}
+  ~StaticSolver();
+  StaticSolver(const StaticSolver &) = delete;
+  StaticSolver &operator=(const StaticSolver &) = delete;
+
+  PetscErrorCode setUp();
+  // Solve from the coordinates in x (layout of x) at time t. On return x
+  // holds [q | lambda_hat] and multipliers() the unscaled multipliers.
+  // onStep (optional) is called after every converged load increment.
+  PetscErrorCode solve(double t, int loadSteps, Vec x, const std::function<PetscErrorCode(const LoadStepInfo &)> &onStep,
+                       PetscBool *converged);
+  Vec multipliers() const { return lambda_; }
+  double sigma() const { return sigma_; }
+
+private:
+  Assembler &assembler_;
+  NewtonSolver newton_;
+  Vec lambda_ = nullptr, backup_ = nullptr;
+  double sigma_ = 1;
+};
+
+} // namespace boomdyn

@@ -1,0 +1,45 @@
+// Scalar functions of time with exact first and second derivatives, shared by
+// loads and drives (driving constraints need f, f' and f'' for C_t and C_tt).
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace boomdyn {
+
+class TimeFunction {
+public:
+  enum class Kind { Constant, Ramp, SmoothStep, Table, Sine };
+
+  TimeFunction() = default; // constant 0
+
+  static TimeFunction constant(double value);
+  // Linear from (t0, v0) to (t1, v1); constant before and after.
+  static TimeFunction ramp(double t0, double t1, double v0, double v1);
+  // Quintic 10s^3 - 15s^4 + 6s^5 from (t0, v0) to (t1, v1): C2, so drives
+  // built on it start and stop without an acceleration jump.
+  static TimeFunction smoothStep(double t0, double t1, double v0, double v1);
+  // Piecewise linear through (t_k, v_k), t strictly increasing; constant
+  // outside. f'' is zero between knots (the kinks carry no impulse here).
+  static TimeFunction table(std::vector<double> t, std::vector<double> v);
+  // offset + amplitude sin(2 pi frequency (t - t0) + phase) for t >= t0, offset + amplitude sin(phase) before.
+  static TimeFunction sine(double amplitude, double frequency, double phase, double offset, double t0 = 0.0);
+
+  double value(double t) const;
+  double rate(double t) const;  // df/dt
+  double accel(double t) const; // d2f/dt2
+  Kind kind() const { return kind_; }
+  std::string describe() const;
+
+  // The same function with every value multiplied by factor (derivatives
+  // follow); used to turn angles given in degrees into radians.
+  TimeFunction scaled(double factor) const;
+
+private:
+  Kind kind_ = Kind::Constant;
+  double t0_ = 0, t1_ = 0, v0_ = 0, v1_ = 0;
+  double amplitude_ = 0, frequency_ = 0, phase_ = 0;
+  std::vector<double> times_, values_;
+};
+
+} // namespace boomdyn

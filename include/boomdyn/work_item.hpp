@@ -1,0 +1,73 @@
+// The contract between the physics (elements, loads, constraints) and the
+// assembler. Every contribution to the saddle-point system is a WorkItem: it
+// names the global unknowns it touches (coordinates first, then its
+// multiplier rows) and adds a dense residual and Jacobian block over them.
+//
+// One global unknown vector x = [q | lambda_hat]. The solvers choose how q,
+// its velocity and acceleration follow from x through an affine map
+//     q = qc + cQ x,   v = vc + cV x,   a = ac + cA x
+// (dynamics: cQ = 1, cV = gamma', cA = beta'; consistent accelerations:
+// cQ = cV = 0, cA = 1; statics: cQ = 1, cV = cA = 0), so that one Jacobian
+// d(residual)/dx = cA M + cV D + cQ K serves every analysis.
+//
+// Multipliers are scaled: lambda = sigma * lambda_hat and constraint rows
+// are sigma * C, which keeps the iteration matrix well conditioned at any
+// step size (Bottasso, Bauchau & Cardona 2007).
+#pragma once
+
+#include <petscsys.h>
+
+#include <string>
+#include <vector>
+
+namespace boomdyn {
+
+struct Kinematics {
+  double cQ = 1, cV = 0, cA = 0;
+};
+
+struct AssemblyContext {
+  double t = 0;
+  Kinematics kin;
+  double sigma = 1;          // multiplier / constraint-row scaling
+  double loadFactor = 1;     // multiplies external loads and gravity (static load stepping)
+  // Constraint rows at acceleration level: sigma (C_q a + gamma) instead of sigma C.
+  bool accelerationLevel = false;
+  // Emit zeros in every constraint block (the mass pencil B of the eigenproblem).
+  bool constraintBlocks = true;
+};
+
+// Values of the item's unknowns, in the order of dofs(): q, v, a of the
+// coordinates, and x (= lambda_hat) of the multiplier rows.
+struct ItemValues {
+  const double *q = nullptr;
+  const double *v = nullptr;
+  const double *a = nullptr;
+  const double *lambda = nullptr; // lambda_hat of the multiplier rows (after the coordinates)
+};
+
+struct EnergyParts {
+  double kinetic = 0, strain = 0, potential = 0;
+};
+
+class WorkItem {
+public:
+  virtual ~WorkItem() = default;
+  virtual std::string name() const = 0;
+  // Coordinates touched now, in order; then multiplier rows (global indices).
+  virtual void coordinates(std::vector<PetscInt> &dofs) const = 0;
+  virtual void multiplierRows(std::vector<PetscInt> &rows) const { rows.clear(); }
+  // Add the residual (size n = #coordinates + #rows) and, if J is not null,
+  // the Jacobian d(residual)/dx (n x n, row-major) for the context.
+  virtual void evaluate(const AssemblyContext &ctx, const ItemValues &in, double *residual, double *J) const = 0;
+  // Diagnostics at a state.
+  virtual void energy(const AssemblyContext &, const ItemValues &, EnergyParts &) const {}
+  virtual double constraintViolation(const AssemblyContext &, const ItemValues &) const { return 0; }
+  // Contribution to a characteristic mass / stiffness (diagonal sums) used to scale multipliers.
+  virtual void scales(const ItemValues &, double &massDiag, double &stiffDiag, int &count) const
+  {
+    (void)massDiag, (void)stiffDiag, (void)count;
+  }
+};
+
+} // namespace boomdyn

@@ -1,0 +1,127 @@
+#include "boomdyn/eigen_solver.hpp"
+
+#include "boomdyn/log_events.hpp"
+
+#include <slepceps.h>
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+
+namespace boomdyn {
+
+PetscErrorCode solveModes(Assembler &assembler, double t, Vec q, Vec lambda, int count, ModalResult *result)
+{
+  const PetscInt nq = assembler.model().numCoordinates();
+  Mat A, B;
+  Vec x, xr;
+  EPS eps;
+  ST st;
+  KSP ksp;
+  PC pc;
+  PetscFunctionBeginUser;
+  PetscCall(PetscLogEventBegin(logEvents().eigen, 0, 0, 0, 0));
+  // x = [q | lambda] with sigma = 1 (the Hessian term then uses lambda itself).
+  PetscCall(assembler.createVector(&x));
+  {
+    PetscInt lo, hi;
+    const PetscScalar *qa, *la;
+    PetscScalar *xa;
+    PetscCall(VecGetOwnershipRange(x, &lo, &hi));
+    PetscCall(VecGetArrayRead(q, &qa));
+    PetscCall(VecGetArrayRead(lambda, &la));
+    PetscCall(VecGetArray(x, &xa));
+    for (PetscInt i = lo; i < hi; ++i) xa[i - lo] = i < nq ? qa[i - lo] : la[i - lo];
+    PetscCall(VecRestoreArray(x, &xa));
+    PetscCall(VecRestoreArrayRead(lambda, &la));
+    PetscCall(VecRestoreArrayRead(q, &qa));
+  }
+  AssemblyContext ctx;
+  ctx.t = t;
+  ctx.sigma = 1.0;
+  PetscCall(assembler.setOffsets(nullptr, nullptr, nullptr));
+  PetscCall(assembler.createMatrix(&A));
+  PetscCall(assembler.createMatrix(&B));
+  ctx.kin = {1.0, 0.0, 0.0};
+  PetscCall(assembler.evaluate(ctx, x, nullptr, A));
+  // B: the same pattern as A (explicit zeros), so ST can combine them cheaply.
+  ctx.kin = {0.0, 0.0, 1.0};
+  ctx.constraintBlocks = false;
+  PetscCall(assembler.evaluate(ctx, x, nullptr, B));
+
+  PetscCall(EPSCreate(assembler.comm(), &eps));
+  PetscCall(EPSSetOptionsPrefix(eps, "modal_"));
+  PetscCall(EPSSetOperators(eps, A, B));
+  PetscCall(EPSSetProblemType(eps, EPS_GHEP));
+  PetscCall(EPSSetType(eps, EPSKRYLOVSCHUR));
+  PetscCall(EPSSetDimensions(eps, count, PETSC_DEFAULT, PETSC_DEFAULT));
+  PetscCall(EPSSetTolerances(eps, 1e-12, 500));
+  // A slightly negative target keeps A - target B nonsingular when the
+  // mechanism has rigid-body modes (omega = 0).
+  PetscCall(EPSSetTarget(eps, -1.0));
+  PetscCall(EPSSetWhichEigenpairs(eps, EPS_TARGET_MAGNITUDE));
+  PetscCall(EPSGetST(eps, &st));
+  PetscCall(STSetType(st, STSINVERT));
+  PetscCall(STGetKSP(st, &ksp));
+  PetscCall(KSPSetType(ksp, KSPPREONLY));
+  PetscCall(KSPGetPC(ksp, &pc));
+  PetscCall(PCSetType(pc, PCLU));
+  PetscCall(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS));
+  PetscCall(EPSSetFromOptions(eps));
+  PetscCall(EPSSolve(eps));
+  PetscInt nconv;
+  PetscCall(EPSGetConverged(eps, &nconv));
+  PetscCheck(nconv >= count, assembler.comm(), PETSC_ERR_NOT_CONVERGED,
+             "eigen-analysis: %" PetscInt_FMT " of %d eigenpairs converged", nconv, count);
+
+  // Order by eigenvalue (SLEPc returns them by distance to the target).
+  std::vector<PetscScalar> values(nconv);
+  for (PetscInt i = 0; i < nconv; ++i) PetscCall(EPSGetEigenpair(eps, i, &values[i], nullptr, nullptr, nullptr));
+  std::vector<PetscInt> order(nconv);
+  std::iota(order.begin(), order.end(), 0);
+  std::sort(order.begin(), order.end(), [&](PetscInt a, PetscInt b) { return values[a] < values[b]; });
+
+  PetscMPIInt rank;
+  PetscCallMPI(MPI_Comm_rank(assembler.comm(), &rank));
+  VecScatter toZero;
+  PetscCall(MatCreateVecs(A, &xr, nullptr));
+  Vec gathered;
+  PetscCall(VecScatterCreateToZero(xr, &toZero, &gathered));
+  *result = ModalResult{};
+  for (int k = 0; k < count; ++k) {
+    const PetscInt i = order[k];
+    PetscScalar w;
+    PetscReal err;
+    PetscCall(EPSGetEigenpair(eps, i, &w, nullptr, xr, nullptr));
+    PetscCall(EPSComputeError(eps, i, EPS_ERROR_RELATIVE, &err));
+    result->omega2.push_back(w);
+    result->frequencyHz.push_back(std::sqrt(std::max(w, 0.0)) / (2.0 * M_PI));
+    result->residuals.push_back(err);
+    PetscCall(VecScatterBegin(toZero, xr, gathered, INSERT_VALUES, SCATTER_FORWARD));
+    PetscCall(VecScatterEnd(toZero, xr, gathered, INSERT_VALUES, SCATTER_FORWARD));
+    if (rank == 0) {
+      const PetscScalar *g;
+      PetscCall(VecGetArrayRead(gathered, &g));
+      std::vector<double> shape(g, g + nq);
+      PetscCall(VecRestoreArrayRead(gathered, &g));
+      // Sign and scale fixed so that runs on any rank count compare directly.
+      double big = 0;
+      for (double s : shape)
+        if (std::abs(s) > std::abs(big)) big = s;
+      if (big != 0)
+        for (double &s : shape) s /= big;
+      result->shapes.push_back(std::move(shape));
+    }
+  }
+  PetscCall(VecScatterDestroy(&toZero));
+  PetscCall(VecDestroy(&gathered));
+  PetscCall(VecDestroy(&xr));
+  PetscCall(EPSDestroy(&eps));
+  PetscCall(MatDestroy(&A));
+  PetscCall(MatDestroy(&B));
+  PetscCall(VecDestroy(&x));
+  PetscCall(PetscLogEventEnd(logEvents().eigen, 0, 0, 0, 0));
+  PetscFunctionReturn(0);
+}
+
+} // namespace boomdyn

@@ -1,0 +1,54 @@
+#include "boomdyn/ancf_beam.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace boomdyn {
+
+AncfBeam::AncfBeam(std::string name, double length, int elements, const ancf::Section &section, Vec2 origin,
+                   double angle, PetscInt first)
+  : Body(std::move(name), length, first), elements_(elements), section_(section), origin_(origin),
+    direction_(std::cos(angle), std::sin(angle))
+{
+}
+
+void AncfBeam::initialCoordinates(double *q) const
+{
+  for (int k = 0; k <= elements_; ++k) {
+    const Vec2 p = origin_ + (k * elementLength()) * direction_;
+    q[4 * k + 0] = p.x();
+    q[4 * k + 1] = p.y();
+    q[4 * k + 2] = direction_.x();
+    q[4 * k + 3] = direction_.y();
+  }
+}
+
+CenterlineLocation AncfBeam::locate(double s) const
+{
+  const double l = elementLength();
+  // A point exactly on a node belongs to the element that starts there (the
+  // last node to the last element); both give the same r, r' by C1 continuity.
+  int el = static_cast<int>(std::floor(s / l));
+  el = std::clamp(el, 0, elements_ - 1);
+  CenterlineLocation loc;
+  loc.count = 8;
+  loc.element = el;
+  loc.s = s;
+  loc.xi = (s - el * l) / l;
+  for (int k = 0; k < 8; ++k) loc.dofs[k] = elementDof(el, k);
+  return loc;
+}
+
+void AncfBeam::sample(const CenterlineLocation &loc, double s, const double *values, CenterlineSample &out) const
+{
+  const double l = elementLength();
+  const double xi = (s - loc.element * l) / l;
+  const Eigen::Map<const ancf::Vec8> e(values);
+  for (int d = 0; d < 4; ++d) {
+    out.r_q[d] = ancf::shapeMatrix(xi, l, d);
+    out.r[d] = out.r_q[d] * e;
+  }
+  out.linear = true;
+}
+
+} // namespace boomdyn

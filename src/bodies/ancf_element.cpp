@@ -1,0 +1,192 @@
+#include "boomdyn/ancf_element.hpp"
+
+#include <array>
+#include <cmath>
+
+namespace boomdyn::ancf {
+
+namespace {
+
+struct GaussRule {
+  std::array<double, kGaussPoints> xi, w; // on [0, 1]
+};
+
+const GaussRule &gaussRule()
+{
+  static const GaussRule rule = [] {
+    // 5-point Gauss-Legendre on [-1, 1], mapped to [0, 1].
+    const double a = std::sqrt(5.0 - 2.0 * std::sqrt(10.0 / 7.0)) / 3.0;
+    const double b = std::sqrt(5.0 + 2.0 * std::sqrt(10.0 / 7.0)) / 3.0;
+    const double wa = (322.0 + 13.0 * std::sqrt(70.0)) / 900.0;
+    const double wb = (322.0 - 13.0 * std::sqrt(70.0)) / 900.0;
+    const std::array<double, 5> x{-b, -a, 0.0, a, b};
+    const std::array<double, 5> w{wb, wa, 128.0 / 225.0, wa, wb};
+    GaussRule r;
+    for (int i = 0; i < 5; ++i) {
+      r.xi[i] = 0.5 * (x[i] + 1.0);
+      r.w[i] = 0.5 * w[i];
+    }
+    return r;
+  }();
+  return rule;
+}
+
+// Scalar cross product a x b = a_x b_y - a_y b_x.
+inline double cross(const Vec2 &a, const Vec2 &b) { return a.x() * b.y() - a.y() * b.x(); }
+
+// Expand 4 scalar shape values into the 8-vector (s ⊗ v) with v 2-D: entry 2k+d = s_k v_d.
+inline Vec8 expand(const Eigen::Vector4d &s, const Vec2 &v)
+{
+  Vec8 out;
+  for (int k = 0; k < 4; ++k) {
+    out[2 * k] = s[k] * v.x();
+    out[2 * k + 1] = s[k] * v.y();
+  }
+  return out;
+}
+
+// Rotated vector W v with a x b = a^T W b, i.e. W v = (v_y, -v_x).
+inline Vec2 rotCW(const Vec2 &v) { return Vec2(v.y(), -v.x()); }
+
+} // namespace
+
+Eigen::Vector4d shapeValues(double xi, double l, int derivative)
+{
+  const double x2 = xi * xi, x3 = x2 * xi;
+  switch (derivative) {
+  case 0:
+    return {1 - 3 * x2 + 2 * x3, l * (xi - 2 * x2 + x3), 3 * x2 - 2 * x3, l * (-x2 + x3)};
+  case 1:
+    return Eigen::Vector4d(-6 * xi + 6 * x2, l * (1 - 4 * xi + 3 * x2), 6 * xi - 6 * x2, l * (-2 * xi + 3 * x2)) / l;
+  case 2:
+    return Eigen::Vector4d(-6 + 12 * xi, l * (-4 + 6 * xi), 6 - 12 * xi, l * (-2 + 6 * xi)) / (l * l);
+  case 3:
+    return Eigen::Vector4d(12, 6 * l, -12, 6 * l) / (l * l * l);
+  default:
+    return Eigen::Vector4d::Zero();
+  }
+}
+
+Mat28 shapeMatrix(double xi, double l, int derivative)
+{
+  const Eigen::Vector4d s = shapeValues(xi, l, derivative);
+  Mat28 S = Mat28::Zero();
+  for (int k = 0; k < 4; ++k) {
+    S(0, 2 * k) = s[k];
+    S(1, 2 * k + 1) = s[k];
+  }
+  return S;
+}
+
+Vec2 position(const Vec8 &e, double xi, double l, int derivative)
+{
+  const Eigen::Vector4d s = shapeValues(xi, l, derivative);
+  Vec2 r = Vec2::Zero();
+  for (int k = 0; k < 4; ++k) r += s[k] * e.segment<2>(2 * k);
+  return r;
+}
+
+Mat8 massMatrix(double rhoA, double l)
+{
+  // ∫_0^1 s_a s_b dxi for the cubic Hermite functions (the classic beam
+  // consistent-mass matrix /(420)), expanded to both directions.
+  Eigen::Matrix4d m;
+  m << 156, 22 * l, 54, -13 * l,
+       22 * l, 4 * l * l, 13 * l, -3 * l * l,
+       54, 13 * l, 156, -22 * l,
+       -13 * l, -3 * l * l, -22 * l, 4 * l * l;
+  m *= rhoA * l / 420.0;
+  Mat8 M = Mat8::Zero();
+  for (int a = 0; a < 4; ++a)
+    for (int b = 0; b < 4; ++b) {
+      M(2 * a, 2 * b) = m(a, b);
+      M(2 * a + 1, 2 * b + 1) = m(a, b);
+    }
+  return M;
+}
+
+Vec8 gravityForce(double rhoA, double l, const Vec2 &g)
+{
+  // ∫_0^1 s_k dxi = (1/2, l/12, 1/2, -l/12).
+  const Eigen::Vector4d integral(0.5, l / 12.0, 0.5, -l / 12.0);
+  return expand(rhoA * l * integral, g);
+}
+
+double axialStrain(const Vec8 &e, double xi, double l)
+{
+  const Vec2 r1 = position(e, xi, l, 1);
+  return 0.5 * (r1.squaredNorm() - 1.0);
+}
+
+double curvature(const Vec8 &e, double xi, double l)
+{
+  const Vec2 r1 = position(e, xi, l, 1), r2 = position(e, xi, l, 2);
+  return cross(r1, r2) / r1.squaredNorm();
+}
+
+double strainEnergy(const Section &sec, double l, const Vec8 &e)
+{
+  const GaussRule &g = gaussRule();
+  double U = 0;
+  for (int p = 0; p < kGaussPoints; ++p) {
+    const double eps = axialStrain(e, g.xi[p], l), K = curvature(e, g.xi[p], l);
+    U += g.w[p] * (sec.EA * eps * eps + sec.EI * K * K);
+  }
+  return 0.5 * l * U;
+}
+
+void internalForce(const Section &sec, double l, const Vec8 &e, Vec8 &f, Mat8 *Kt)
+{
+  const GaussRule &g = gaussRule();
+  f.setZero();
+  if (Kt) Kt->setZero();
+  for (int p = 0; p < kGaussPoints; ++p) {
+    const Eigen::Vector4d s1 = shapeValues(g.xi[p], l, 1), s2 = shapeValues(g.xi[p], l, 2);
+    Vec2 r1 = Vec2::Zero(), r2 = Vec2::Zero();
+    for (int k = 0; k < 4; ++k) {
+      r1 += s1[k] * e.segment<2>(2 * k);
+      r2 += s2[k] * e.segment<2>(2 * k);
+    }
+    const double wx = g.w[p] * l; // dx weight
+    const double J2 = r1.squaredNorm();
+    const double eps = 0.5 * (J2 - 1.0);
+    const double c = cross(r1, r2);
+    const double K = c / J2;
+    // First derivatives: d eps/de = S'^T r', dc/de = S'^T W r'' + S''^T W^T r'.
+    const Vec8 dEps = expand(s1, r1);
+    const Vec8 dc = expand(s1, rotCW(r2)) - expand(s2, rotCW(r1));
+    const Vec8 dK = (dc - 2.0 * K * dEps) / J2; // dJ2/de = 2 dEps
+    f += wx * (sec.EA * eps * dEps + sec.EI * K * dK);
+    if (!Kt) continue;
+    // Second derivatives. d2eps = S'^T S'; d2c = S'^T W S'' + S''^T W^T S';
+    // d2K = (d2c - dK dJ2^T - dJ2 dK^T - K d2J2) / J2 with dJ2 = 2 dEps, d2J2 = 2 S'^T S'.
+    // Only the scalar 4x4 "shape" parts differ, so build them per direction pair.
+    Eigen::Matrix4d s11 = s1 * s1.transpose();
+    Eigen::Matrix4d s12 = s1 * s2.transpose(); // multiplies W: (0,1) -> +, (1,0) -> -
+    Mat8 d2eps = Mat8::Zero(), d2c = Mat8::Zero();
+    for (int a = 0; a < 4; ++a)
+      for (int b = 0; b < 4; ++b) {
+        d2eps(2 * a, 2 * b) = s11(a, b);
+        d2eps(2 * a + 1, 2 * b + 1) = s11(a, b);
+        // S'^T W S'' : entry (a,i),(b,j) = s1_a W_ij s2_b with W = [[0,1],[-1,0]]
+        const double m = s12(a, b);
+        d2c(2 * a, 2 * b + 1) += m;
+        d2c(2 * a + 1, 2 * b) -= m;
+        // + its transpose
+        d2c(2 * b + 1, 2 * a) += m;
+        d2c(2 * b, 2 * a + 1) -= m;
+      }
+    const Mat8 d2K = (d2c - 2.0 * (dK * dEps.transpose() + dEps * dK.transpose()) - 2.0 * K * d2eps) / J2;
+    Kt->noalias() += wx * (sec.EA * (dEps * dEps.transpose() + eps * d2eps) +
+                           sec.EI * (dK * dK.transpose() + K * d2K));
+  }
+}
+
+Vec8 straightElement(const Vec2 &p0, const Vec2 &dir, double l)
+{
+  Vec8 e;
+  e << p0, dir, p0 + l * dir, dir;
+  return e;
+}
+
+} // namespace boomdyn::ancf

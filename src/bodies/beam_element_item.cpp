@@ -1,0 +1,59 @@
+#include "boomdyn/beam_element_item.hpp"
+
+namespace boomdyn {
+
+BeamElementItem::BeamElementItem(const AncfBeam &beam, int element, std::shared_ptr<const ancf::Mat8> mass,
+                                 const Vec2 &gravity)
+  : beam_(&beam), element_(element), mass_(std::move(mass)),
+    gravity_(ancf::gravityForce(beam.section().rhoA, beam.elementLength(), gravity))
+{
+}
+
+std::string BeamElementItem::name() const { return beam_->name() + ".element" + std::to_string(element_); }
+
+void BeamElementItem::coordinates(std::vector<PetscInt> &dofs) const
+{
+  dofs.resize(8);
+  for (int k = 0; k < 8; ++k) dofs[k] = beam_->elementDof(element_, k);
+}
+
+void BeamElementItem::evaluate(const AssemblyContext &ctx, const ItemValues &in, double *residual, double *J) const
+{
+  const Eigen::Map<const ancf::Vec8> q(in.q), a(in.a);
+  Eigen::Map<ancf::Vec8> r(residual);
+  ancf::Vec8 f;
+  if (J) {
+    ancf::Mat8 K;
+    ancf::internalForce(beam_->section(), beam_->elementLength(), q, f, &K);
+    Eigen::Map<Eigen::Matrix<double, 8, 8, Eigen::RowMajor>> Jm(J);
+    Jm = ctx.kin.cA * (*mass_) + ctx.kin.cQ * K;
+  } else {
+    ancf::internalForce(beam_->section(), beam_->elementLength(), q, f, nullptr);
+  }
+  r = (*mass_) * a + f - ctx.loadFactor * gravity_;
+}
+
+void BeamElementItem::energy(const AssemblyContext &ctx, const ItemValues &in, EnergyParts &e) const
+{
+  const Eigen::Map<const ancf::Vec8> q(in.q), v(in.v);
+  e.kinetic += 0.5 * v.dot((*mass_) * v);
+  e.strain += ancf::strainEnergy(beam_->section(), beam_->elementLength(), q);
+  // Gravity is a constant generalized force: V = -Q_g . e.
+  e.potential -= ctx.loadFactor * gravity_.dot(q);
+}
+
+void BeamElementItem::scales(const ItemValues &in, double &massDiag, double &stiffDiag, int &count) const
+{
+  const Eigen::Map<const ancf::Vec8> q(in.q);
+  ancf::Vec8 f;
+  ancf::Mat8 K;
+  ancf::internalForce(beam_->section(), beam_->elementLength(), q, f, &K);
+  // Position entries only: slope entries carry other units (kg m^2).
+  for (int k : {0, 1, 4, 5}) {
+    massDiag += (*mass_)(k, k);
+    stiffDiag += K(k, k);
+  }
+  count += 4;
+}
+
+} // namespace boomdyn

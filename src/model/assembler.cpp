@@ -1,0 +1,245 @@
+#include "boomdyn/assembler.hpp"
+
+#include "boomdyn/log_events.hpp"
+
+#include <algorithm>
+#include <unordered_map>
+
+namespace boomdyn {
+
+Assembler::~Assembler()
+{
+  // Destructors cannot propagate PETSc errors; destruction of valid objects does not fail.
+  if (scatter_) (void)VecScatterDestroy(&scatter_);
+  if (xLocal_) (void)VecDestroy(&xLocal_);
+  if (fLocal_) (void)VecDestroy(&fLocal_);
+  if (xTemplate_) (void)VecDestroy(&xTemplate_);
+}
+
+PetscErrorCode Assembler::setUp(MPI_Comm comm)
+{
+  PetscFunctionBeginUser;
+  comm_ = comm;
+  PetscCall(registerLogEvents());
+  PetscCall(VecCreate(comm, &xTemplate_));
+  PetscCall(VecSetSizes(xTemplate_, PETSC_DECIDE, model_.size()));
+  PetscCall(VecSetFromOptions(xTemplate_));
+  PetscCall(VecSetUp(xTemplate_));
+  PetscInt lo, hi;
+  PetscCall(VecGetOwnershipRange(xTemplate_, &lo, &hi));
+
+  // Items whose first coordinate this rank owns. Contiguous coordinate
+  // numbering per body makes this a contiguous split of each boom's elements.
+  std::vector<PetscInt> coords, rows;
+  std::vector<std::vector<PetscInt>> dofLists;
+  items_.clear();
+  for (const auto &item : model_.items()) {
+    item->coordinates(coords);
+    PetscCheck(!coords.empty(), comm, PETSC_ERR_PLIB, "work item %s touches no coordinate", item->name().c_str());
+    if (coords[0] < lo || coords[0] >= hi) continue;
+    item->multiplierRows(rows);
+    items_.push_back(item.get());
+    itemCoords_.push_back(static_cast<int>(coords.size()));
+    coords.insert(coords.end(), rows.begin(), rows.end());
+    dofLists.push_back(coords);
+  }
+
+  // Local numbering of every global index this rank's items touch.
+  std::vector<PetscInt> needed;
+  for (const auto &d : dofLists) needed.insert(needed.end(), d.begin(), d.end());
+  std::sort(needed.begin(), needed.end());
+  needed.erase(std::unique(needed.begin(), needed.end()), needed.end());
+  std::unordered_map<PetscInt, PetscInt> localOf;
+  for (std::size_t i = 0; i < needed.size(); ++i) localOf[needed[i]] = static_cast<PetscInt>(i);
+
+  itemStart_.assign(1, 0);
+  cooStart_.assign(1, 0);
+  std::size_t maxN = 0;
+  for (const auto &d : dofLists) {
+    for (PetscInt g : d) itemLocal_.push_back(localOf[g]);
+    itemStart_.push_back(static_cast<int>(itemLocal_.size()));
+    for (PetscInt gi : d)
+      for (PetscInt gj : d) {
+        cooI_.push_back(gi);
+        cooJ_.push_back(gj);
+      }
+    cooStart_.push_back(static_cast<PetscCount>(cooI_.size()));
+    maxN = std::max(maxN, d.size());
+  }
+  cooV_.assign(cooI_.size(), 0.0);
+
+  const PetscInt nloc = static_cast<PetscInt>(needed.size());
+  IS is;
+  PetscCall(ISCreateGeneral(PETSC_COMM_SELF, nloc, needed.data(), PETSC_COPY_VALUES, &is));
+  PetscCall(VecCreateSeq(PETSC_COMM_SELF, nloc, &xLocal_));
+  PetscCall(VecDuplicate(xLocal_, &fLocal_));
+  PetscCall(VecScatterCreate(xTemplate_, is, xLocal_, nullptr, &scatter_));
+  PetscCall(ISDestroy(&is));
+  qc_.assign(nloc, 0.0), vc_.assign(nloc, 0.0), ac_.assign(nloc, 0.0);
+  q_.assign(nloc, 0.0), v_.assign(nloc, 0.0), a_.assign(nloc, 0.0);
+  for (auto *b : {&bq_, &bv_, &ba_, &bl_, &br_}) b->assign(maxN, 0.0);
+  bJ_.assign(maxN * maxN, 0.0);
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode Assembler::createVector(Vec *x) const
+{
+  PetscFunctionBeginUser;
+  PetscCall(VecDuplicate(xTemplate_, x));
+  PetscCall(VecSet(*x, 0.0));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode Assembler::createMatrix(Mat *J) const
+{
+  PetscInt nlocal;
+  PetscFunctionBeginUser;
+  PetscCall(VecGetLocalSize(xTemplate_, &nlocal));
+  PetscCall(MatCreate(comm_, J));
+  PetscCall(MatSetSizes(*J, nlocal, nlocal, model_.size(), model_.size()));
+  PetscCall(MatSetType(*J, MATAIJ));
+  PetscCall(MatSetPreallocationCOO(*J, static_cast<PetscCount>(cooI_.size()), const_cast<PetscInt *>(cooI_.data()),
+                                   const_cast<PetscInt *>(cooJ_.data())));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode Assembler::setOffsets(Vec qc, Vec vc, Vec ac)
+{
+  PetscFunctionBeginUser;
+  std::vector<double> *dst[3] = {&qc_, &vc_, &ac_};
+  Vec src[3] = {qc, vc, ac};
+  for (int k = 0; k < 3; ++k) {
+    if (!src[k]) {
+      std::fill(dst[k]->begin(), dst[k]->end(), 0.0);
+      continue;
+    }
+    const PetscScalar *arr;
+    PetscCall(VecScatterBegin(scatter_, src[k], xLocal_, INSERT_VALUES, SCATTER_FORWARD));
+    PetscCall(VecScatterEnd(scatter_, src[k], xLocal_, INSERT_VALUES, SCATTER_FORWARD));
+    PetscCall(VecGetArrayRead(xLocal_, &arr));
+    std::copy(arr, arr + dst[k]->size(), dst[k]->begin());
+    PetscCall(VecRestoreArrayRead(xLocal_, &arr));
+  }
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode Assembler::scatterAndMap(const AssemblyContext &ctx, Vec x)
+{
+  const PetscScalar *xl;
+  PetscFunctionBeginUser;
+  PetscCall(VecScatterBegin(scatter_, x, xLocal_, INSERT_VALUES, SCATTER_FORWARD));
+  PetscCall(VecScatterEnd(scatter_, x, xLocal_, INSERT_VALUES, SCATTER_FORWARD));
+  PetscCall(VecGetArrayRead(xLocal_, &xl));
+  const Kinematics &k = ctx.kin;
+  for (std::size_t i = 0; i < q_.size(); ++i) {
+    q_[i] = qc_[i] + k.cQ * xl[i];
+    v_[i] = vc_[i] + k.cV * xl[i];
+    a_[i] = ac_[i] + k.cA * xl[i];
+  }
+  // Multiplier entries are read from xLocal_ directly (gather); keep a copy in bl_ per item.
+  PetscCall(VecRestoreArrayRead(xLocal_, &xl));
+  PetscFunctionReturn(0);
+}
+
+void Assembler::gather(std::size_t k, ItemValues &vals)
+{
+  const int begin = itemStart_[k], n = itemStart_[k + 1] - begin, nc = itemCoords_[k];
+  const PetscScalar *xl;
+  (void)VecGetArrayRead(xLocal_, &xl); // cannot fail on a sequential vector
+  for (int i = 0; i < n; ++i) {
+    const PetscInt li = itemLocal_[begin + i];
+    bq_[i] = q_[li];
+    bv_[i] = v_[li];
+    ba_[i] = a_[li];
+    bl_[i] = xl[li];
+  }
+  (void)VecRestoreArrayRead(xLocal_, &xl);
+  vals.q = bq_.data();
+  vals.v = bv_.data();
+  vals.a = ba_.data();
+  vals.lambda = bl_.data() + nc;
+}
+
+PetscErrorCode Assembler::evaluate(const AssemblyContext &ctx, Vec x, Vec F, Mat J)
+{
+  PetscFunctionBeginUser;
+  PetscCall(PetscLogEventBegin(logEvents().assembly, 0, 0, 0, 0));
+  PetscCall(scatterAndMap(ctx, x));
+  PetscScalar *fl = nullptr;
+  if (F) {
+    PetscCall(VecSet(fLocal_, 0.0));
+    PetscCall(VecGetArray(fLocal_, &fl));
+  }
+  ItemValues vals;
+  for (std::size_t k = 0; k < items_.size(); ++k) {
+    const int begin = itemStart_[k], n = itemStart_[k + 1] - begin;
+    gather(k, vals);
+    std::fill(br_.begin(), br_.begin() + n, 0.0);
+    if (J) std::fill(bJ_.begin(), bJ_.begin() + n * n, 0.0);
+    items_[k]->evaluate(ctx, vals, br_.data(), J ? bJ_.data() : nullptr);
+    if (fl)
+      for (int i = 0; i < n; ++i) fl[itemLocal_[begin + i]] += br_[i];
+    if (J) std::copy(bJ_.begin(), bJ_.begin() + n * n, cooV_.begin() + cooStart_[k]);
+  }
+  if (F) {
+    PetscCall(VecRestoreArray(fLocal_, &fl));
+    PetscCall(VecSet(F, 0.0));
+    PetscCall(VecScatterBegin(scatter_, fLocal_, F, ADD_VALUES, SCATTER_REVERSE));
+    PetscCall(VecScatterEnd(scatter_, fLocal_, F, ADD_VALUES, SCATTER_REVERSE));
+  }
+  if (J) PetscCall(MatSetValuesCOO(J, cooV_.data(), INSERT_VALUES));
+  PetscCall(PetscLogEventEnd(logEvents().assembly, 0, 0, 0, 0));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode Assembler::diagnostics(const AssemblyContext &ctx, Vec x, EnergyParts *energy, PetscReal *maxViolation)
+{
+  PetscFunctionBeginUser;
+  PetscCall(scatterAndMap(ctx, x));
+  EnergyParts e;
+  double viol = 0;
+  ItemValues vals;
+  for (std::size_t k = 0; k < items_.size(); ++k) {
+    gather(k, vals);
+    items_[k]->energy(ctx, vals, e);
+    viol = std::max(viol, items_[k]->constraintViolation(ctx, vals));
+  }
+  double sums[3] = {e.kinetic, e.strain, e.potential}, global[3];
+  PetscCallMPI(MPI_Allreduce(sums, global, 3, MPI_DOUBLE, MPI_SUM, comm_));
+  if (energy) *energy = {global[0], global[1], global[2]};
+  double gviol;
+  PetscCallMPI(MPI_Allreduce(&viol, &gviol, 1, MPI_DOUBLE, MPI_MAX, comm_));
+  if (maxViolation) *maxViolation = gviol;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode Assembler::characteristicScales(Vec x, PetscReal *mass, PetscReal *stiffness)
+{
+  PetscFunctionBeginUser;
+  AssemblyContext ctx;
+  PetscCall(scatterAndMap(ctx, x));
+  double sums[3] = {0, 0, 0}, global[3];
+  int count = 0;
+  ItemValues vals;
+  for (std::size_t k = 0; k < items_.size(); ++k) {
+    gather(k, vals);
+    items_[k]->scales(vals, sums[0], sums[1], count);
+  }
+  sums[2] = count;
+  PetscCallMPI(MPI_Allreduce(sums, global, 3, MPI_DOUBLE, MPI_SUM, comm_));
+  const double n = global[2] > 0 ? global[2] : 1.0;
+  *mass = global[0] / n;
+  *stiffness = global[1] / n;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode Assembler::coordinateRange(PetscInt *begin, PetscInt *end) const
+{
+  PetscFunctionBeginUser;
+  PetscCall(VecGetOwnershipRange(xTemplate_, begin, end));
+  *begin = std::min(*begin, model_.numCoordinates());
+  *end = std::min(*end, model_.numCoordinates());
+  PetscFunctionReturn(0);
+}
+
+} // namespace boomdyn

@@ -1,0 +1,47 @@
+#include "boomdyn/constraint_item.hpp"
+
+namespace boomdyn {
+
+using RowMajor = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+
+ConstraintItem::ConstraintItem(std::shared_ptr<const Constraint> constraint, PetscInt firstRow)
+  : constraint_(std::move(constraint)), firstRow_(firstRow)
+{
+}
+
+void ConstraintItem::multiplierRows(std::vector<PetscInt> &rows) const
+{
+  rows.resize(constraint_->numRows());
+  for (int i = 0; i < constraint_->numRows(); ++i) rows[i] = firstRow_ + i;
+}
+
+void ConstraintItem::evaluate(const AssemblyContext &ctx, const ItemValues &in, double *residual, double *J) const
+{
+  if (!ctx.constraintBlocks) return; // B pencil: the item contributes explicit zeros only
+  std::vector<PetscInt> dofs;
+  constraint_->coordinates(dofs);
+  const int nc = static_cast<int>(dofs.size()), m = constraint_->numRows(), n = nc + m;
+  const Eigen::Map<const Eigen::VectorXd> lam(in.lambda, m);
+  const bool needHessian = J && ctx.kin.cQ != 0.0;
+  ConstraintEval ev;
+  constraint_->evaluate(ctx.t, in.q, ctx.accelerationLevel ? in.v : nullptr, needHessian ? in.lambda : nullptr, ev);
+  const double sigma = ctx.sigma;
+  Eigen::Map<Eigen::VectorXd> r(residual, n);
+  r.head(nc) += sigma * ev.Cq.transpose() * lam;
+  if (ctx.accelerationLevel) r.tail(m) += sigma * (ev.Cq * Eigen::Map<const Eigen::VectorXd>(in.a, nc) + ev.gamma);
+  else r.tail(m) += sigma * ev.C;
+  if (!J) return;
+  Eigen::Map<RowMajor> Jm(J, n, n);
+  if (needHessian) Jm.topLeftCorner(nc, nc) += ctx.kin.cQ * sigma * ev.H;
+  Jm.topRightCorner(nc, m) += sigma * ev.Cq.transpose();
+  Jm.bottomLeftCorner(m, nc) += sigma * (ctx.accelerationLevel ? ctx.kin.cA : ctx.kin.cQ) * ev.Cq;
+}
+
+double ConstraintItem::constraintViolation(const AssemblyContext &ctx, const ItemValues &in) const
+{
+  ConstraintEval ev;
+  constraint_->evaluate(ctx.t, in.q, nullptr, nullptr, ev);
+  return ev.C.cwiseAbs().maxCoeff();
+}
+
+} // namespace boomdyn

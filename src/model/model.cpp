@@ -1,0 +1,111 @@
+#include "boomdyn/model.hpp"
+
+#include "boomdyn/ancf_beam.hpp"
+#include "boomdyn/angle_drive.hpp"
+#include "boomdyn/beam_element_item.hpp"
+#include "boomdyn/pin.hpp"
+#include "boomdyn/point_load.hpp"
+
+#include <cmath>
+#include <sstream>
+
+namespace boomdyn {
+
+namespace {
+
+std::string where(const SourceMark &m)
+{
+  std::ostringstream os;
+  os << m.file << ":" << m.line << ": key '" << m.key << "': ";
+  return os.str();
+}
+
+Vec2 toVec(const Vec2d &v) { return Vec2(v[0], v[1]); }
+
+} // namespace
+
+Model::Model(const Scene &scene) : scene_(scene)
+{
+  const Vec2 g = toVec(scene.gravity);
+  for (const BodySpec &b : scene.bodies) {
+    if (b.type != BodySpec::Type::AncfBeam)
+      throw ModelError(where(b.mark) + "body type 'rigid' is not available yet");
+    const ancf::Section sec{b.section.EA, b.section.EI, b.section.rhoA};
+    auto beam = std::make_unique<AncfBeam>(b.name, b.length, b.elements, sec, toVec(b.origin), b.angle, nq_);
+    nq_ += beam->numCoordinates();
+    auto mass = std::make_shared<const ancf::Mat8>(ancf::massMatrix(sec.rhoA, beam->elementLength()));
+    for (int el = 0; el < beam->numElements(); ++el) items_.push_back(std::make_unique<BeamElementItem>(*beam, el, mass, g));
+    bodies_.push_back(std::move(beam));
+  }
+  for (const ConstraintSpec &c : scene.constraints) {
+    const Body *a = findBody(c.a.body);
+    switch (c.type) {
+    case ConstraintSpec::Type::Pin:
+      if (c.b) addConstraint(std::make_shared<Pin>(c.name, *a, c.a.s, *findBody(c.b->body), c.b->s), c.mark);
+      else addConstraint(std::make_shared<Pin>(c.name, *a, c.a.s, toVec(c.ground)), c.mark);
+      break;
+    case ConstraintSpec::Type::AngleDrive:
+      addConstraint(std::make_shared<AngleDrive>(c.name, *a, c.a.s, c.angle), c.mark);
+      break;
+    case ConstraintSpec::Type::Clamp:
+      addConstraint(std::make_shared<Pin>(c.name + ".pin", *a, c.a.s, toVec(c.ground)), c.mark);
+      addConstraint(std::make_shared<AngleDrive>(c.name + ".angle", *a, c.a.s, c.angle), c.mark);
+      break;
+    }
+  }
+  for (const PointForceSpec &f : scene.forces)
+    items_.push_back(std::make_unique<PointForce>(f.name, *findBody(f.at.body), f.at.s, toVec(f.force), f.scale));
+  for (const PointMassSpec &m : scene.masses)
+    items_.push_back(std::make_unique<PointMass>(m.name, *findBody(m.at.body), m.at.s, m.mass, g));
+  for (const SensorSpec &s : scene.output.sensors) sensors_.push_back({s.name, findBody(s.at.body), s.at.s});
+  checkInitialConfiguration();
+}
+
+void Model::addConstraint(std::shared_ptr<Constraint> c, const SourceMark &mark)
+{
+  // Multiplier rows follow all coordinates; bodies are created first, so nq_ is final here.
+  const int rows = c->numRows();
+  auto item = std::make_unique<ConstraintItem>(std::move(c), nq_ + nlambda_);
+  nlambda_ += rows;
+  constraints_.push_back(item.get());
+  constraintMarks_.push_back(mark);
+  items_.push_back(std::move(item));
+}
+
+const Body *Model::findBody(const std::string &name) const
+{
+  for (const auto &b : bodies_)
+    if (b->name() == name) return b.get();
+  throw ModelError("no body named '" + name + "'");
+}
+
+std::vector<double> Model::initialCoordinates() const
+{
+  std::vector<double> q(nq_);
+  for (const auto &b : bodies_) b->initialCoordinates(q.data() + b->firstCoordinate());
+  return q;
+}
+
+void Model::checkInitialConfiguration() const
+{
+  const std::vector<double> q = initialCoordinates();
+  for (std::size_t k = 0; k < constraints_.size(); ++k) {
+    const Constraint &c = constraints_[k]->constraint();
+    std::vector<PetscInt> dofs;
+    c.coordinates(dofs);
+    std::vector<double> vals(dofs.size());
+    for (std::size_t i = 0; i < dofs.size(); ++i) vals[i] = q[dofs[i]];
+    ConstraintEval ev;
+    c.evaluate(0.0, vals.data(), nullptr, nullptr, ev);
+    for (int r = 0; r < c.numRows(); ++r)
+      if (std::abs(ev.C[r]) > 1e-9) {
+        std::ostringstream os;
+        os << where(constraintMarks_[k]) << "constraint '" << c.name() << "' is violated by the initial configuration ("
+           << "row " << r << ": " << ev.C[r] << " " << c.rowUnit(r)
+           << "); place the bodies (origin, angle) so that it holds at t = 0";
+        throw ModelError(os.str());
+      }
+  }
+}
+
+} // namespace boomdyn

@@ -1,0 +1,225 @@
+// TimeFunction: closed-form value, rate and acceleration of each kind.
+//
+// Storage per kind (members of the header):
+//   Constant:   v0_ = value
+//   Ramp:       (t0_, v0_) -> (t1_, v1_)
+//   SmoothStep: (t0_, v0_) -> (t1_, v1_)
+//   Table:      times_, values_
+//   Sine:       v0_ = offset, amplitude_, frequency_ (Hz), phase_ (rad), t0_
+#include "boomdyn/time_function.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+
+namespace boomdyn {
+
+namespace {
+
+constexpr double kTwoPi = 6.283185307179586476925286766559;
+
+// Quintic step h(s) = 10 s^3 - 15 s^4 + 6 s^5 on s in [0, 1] and its first
+// two derivatives; h' and h'' vanish at both ends, which makes it C2.
+double stepShape(double s) { return s * s * s * (10.0 + s * (-15.0 + 6.0 * s)); }
+double stepShapeRate(double s) { return 30.0 * s * s * (1.0 - s) * (1.0 - s); }
+double stepShapeAccel(double s) { return 60.0 * s * (1.0 - s) * (1.0 - 2.0 * s); }
+
+// Compact number formatting for describe(): 6 significant digits.
+std::string fmt(double x)
+{
+  std::ostringstream out;
+  out.precision(6);
+  out << x;
+  return out.str();
+}
+
+} // namespace
+
+TimeFunction TimeFunction::constant(double value)
+{
+  TimeFunction f;
+  f.kind_ = Kind::Constant;
+  f.v0_ = value;
+  return f;
+}
+
+TimeFunction TimeFunction::ramp(double t0, double t1, double v0, double v1)
+{
+  // A zero-length ramp would be a jump with an infinite rate.
+  if (!(t1 > t0))
+    throw std::invalid_argument("TimeFunction::ramp: t1 must be > t0");
+  TimeFunction f;
+  f.kind_ = Kind::Ramp;
+  f.t0_ = t0;
+  f.t1_ = t1;
+  f.v0_ = v0;
+  f.v1_ = v1;
+  return f;
+}
+
+TimeFunction TimeFunction::smoothStep(double t0, double t1, double v0, double v1)
+{
+  if (!(t1 > t0))
+    throw std::invalid_argument("TimeFunction::smoothStep: t1 must be > t0");
+  TimeFunction f = ramp(t0, t1, v0, v1);
+  f.kind_ = Kind::SmoothStep;
+  return f;
+}
+
+TimeFunction TimeFunction::table(std::vector<double> t, std::vector<double> v)
+{
+  if (t.size() != v.size() || t.size() < 2)
+    throw std::invalid_argument("TimeFunction::table: needs >= 2 points and as many values as times");
+  for (std::size_t k = 1; k < t.size(); ++k)
+    if (!(t[k] > t[k - 1]))
+      throw std::invalid_argument("TimeFunction::table: times must be strictly increasing");
+  TimeFunction f;
+  f.kind_ = Kind::Table;
+  f.times_ = std::move(t);
+  f.values_ = std::move(v);
+  return f;
+}
+
+TimeFunction TimeFunction::sine(double amplitude, double frequency, double phase, double offset,
+                                double t0)
+{
+  if (!(frequency >= 0))
+    throw std::invalid_argument("TimeFunction::sine: frequency must be >= 0");
+  TimeFunction f;
+  f.kind_ = Kind::Sine;
+  f.amplitude_ = amplitude;
+  f.frequency_ = frequency;
+  f.phase_ = phase;
+  f.v0_ = offset;
+  f.t0_ = t0;
+  return f;
+}
+
+// For Ramp and Table the derivative at a knot is taken from the segment that
+// starts there (right derivative), so f'(t0) is the ramp slope and f'(t1) = 0.
+
+double TimeFunction::value(double t) const
+{
+  switch (kind_) {
+  case Kind::Constant:
+    return v0_;
+  case Kind::Ramp: {
+    if (t <= t0_)
+      return v0_;
+    if (t >= t1_)
+      return v1_;
+    return v0_ + (v1_ - v0_) * (t - t0_) / (t1_ - t0_);
+  }
+  case Kind::SmoothStep: {
+    if (t <= t0_)
+      return v0_;
+    if (t >= t1_)
+      return v1_;
+    return v0_ + (v1_ - v0_) * stepShape((t - t0_) / (t1_ - t0_));
+  }
+  case Kind::Table: {
+    if (t <= times_.front())
+      return values_.front();
+    if (t >= times_.back())
+      return values_.back();
+    // First knot strictly greater than t: segment [k-1, k] contains t.
+    const auto k = std::upper_bound(times_.begin(), times_.end(), t) - times_.begin();
+    const double ta = times_[k - 1], tb = times_[k];
+    return values_[k - 1] + (values_[k] - values_[k - 1]) * (t - ta) / (tb - ta);
+  }
+  case Kind::Sine: {
+    // Frozen at its t0 value before t0 so that a late start does not run
+    // the oscillation backwards in time.
+    const double tau = std::max(t - t0_, 0.0);
+    return v0_ + amplitude_ * std::sin(kTwoPi * frequency_ * tau + phase_);
+  }
+  }
+  return 0.0;
+}
+
+double TimeFunction::rate(double t) const
+{
+  switch (kind_) {
+  case Kind::Constant:
+    return 0.0;
+  case Kind::Ramp:
+    return (t >= t0_ && t < t1_) ? (v1_ - v0_) / (t1_ - t0_) : 0.0;
+  case Kind::SmoothStep: {
+    if (t <= t0_ || t >= t1_)
+      return 0.0;
+    const double T = t1_ - t0_;
+    return (v1_ - v0_) * stepShapeRate((t - t0_) / T) / T;
+  }
+  case Kind::Table: {
+    if (t < times_.front() || t >= times_.back())
+      return 0.0;
+    const auto k = std::upper_bound(times_.begin(), times_.end(), t) - times_.begin();
+    return (values_[k] - values_[k - 1]) / (times_[k] - times_[k - 1]);
+  }
+  case Kind::Sine: {
+    if (t < t0_)
+      return 0.0;
+    const double w = kTwoPi * frequency_;
+    return amplitude_ * w * std::cos(w * (t - t0_) + phase_);
+  }
+  }
+  return 0.0;
+}
+
+double TimeFunction::accel(double t) const
+{
+  switch (kind_) {
+  case Kind::Constant:
+  case Kind::Ramp:
+  case Kind::Table:
+    return 0.0; // piecewise linear: kinks carry no impulse (see header)
+  case Kind::SmoothStep: {
+    if (t <= t0_ || t >= t1_)
+      return 0.0;
+    const double T = t1_ - t0_;
+    return (v1_ - v0_) * stepShapeAccel((t - t0_) / T) / (T * T);
+  }
+  case Kind::Sine: {
+    if (t < t0_)
+      return 0.0;
+    const double w = kTwoPi * frequency_;
+    return -amplitude_ * w * w * std::sin(w * (t - t0_) + phase_);
+  }
+  }
+  return 0.0;
+}
+
+TimeFunction TimeFunction::scaled(double factor) const
+{
+  TimeFunction f = *this;
+  f.v0_ *= factor; // constant value, ramp/step start, sine offset
+  f.v1_ *= factor;
+  f.amplitude_ *= factor;
+  for (double &v : f.values_)
+    v *= factor;
+  return f;
+}
+
+std::string TimeFunction::describe() const
+{
+  switch (kind_) {
+  case Kind::Constant:
+    return "constant " + fmt(v0_);
+  case Kind::Ramp:
+    return "ramp " + fmt(v0_) + " -> " + fmt(v1_) + " over t in [" + fmt(t0_) + ", " + fmt(t1_) + "] s";
+  case Kind::SmoothStep:
+    return "smooth step " + fmt(v0_) + " -> " + fmt(v1_) + " over t in [" + fmt(t0_) + ", " + fmt(t1_) +
+           "] s";
+  case Kind::Table:
+    return "table of " + std::to_string(times_.size()) + " points over t in [" + fmt(times_.front()) + ", " +
+           fmt(times_.back()) + "] s, values " + fmt(*std::min_element(values_.begin(), values_.end())) +
+           " .. " + fmt(*std::max_element(values_.begin(), values_.end()));
+  case Kind::Sine:
+    return "sine " + fmt(v0_) + " + " + fmt(amplitude_) + " sin(2 pi " + fmt(frequency_) + " Hz (t - " + fmt(t0_) +
+           " s) + " + fmt(phase_) + " rad) for t >= " + fmt(t0_) + " s";
+  }
+  return "unknown";
+}
+
+} // namespace boomdyn

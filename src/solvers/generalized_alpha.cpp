@@ -1,0 +1,139 @@
+#include "boomdyn/generalized_alpha.hpp"
+
+#include "boomdyn/log_events.hpp"
+
+namespace boomdyn {
+
+AlphaParameters AlphaParameters::fromRhoInf(double rho)
+{
+  AlphaParameters p;
+  p.alpha_m = (2.0 * rho - 1.0) / (rho + 1.0);
+  p.alpha_f = rho / (rho + 1.0);
+  p.gamma = 0.5 - p.alpha_m + p.alpha_f;
+  p.beta = 0.25 * (p.gamma + 0.5) * (p.gamma + 0.5);
+  return p;
+}
+
+GeneralizedAlpha::~GeneralizedAlpha()
+{
+  for (Vec *v : {&q_, &v_, &qdd_, &a_, &lambda_, &x_, &qp_, &vc_, &ac_, &zero_})
+    if (*v) (void)VecDestroy(v);
+  if (lambdaIS_) (void)ISDestroy(&lambdaIS_);
+}
+
+PetscErrorCode GeneralizedAlpha::setUp(PetscInt maxNewton)
+{
+  PetscFunctionBeginUser;
+  for (Vec *v : {&q_, &v_, &qdd_, &a_, &lambda_, &x_, &qp_, &vc_, &ac_, &zero_}) PetscCall(assembler_.createVector(v));
+  PetscCall(newton_.setUp(assembler_, nullptr, maxNewton));
+  PetscReal stiffness;
+  PetscCall(assembler_.characteristicScales(zero_, &massScale_, &stiffness));
+  if (massScale_ <= 0) massScale_ = 1.0;
+  PetscFunctionReturn(0);
+}
+
+// Copy the multiplier part of src into dst, scaled (the rest of dst is kept).
+static PetscErrorCode copyMultipliers(Vec src, Vec dst, PetscInt nq, PetscReal scale)
+{
+  PetscInt lo, hi;
+  const PetscScalar *s;
+  PetscScalar *d;
+  PetscFunctionBeginUser;
+  PetscCall(VecGetOwnershipRange(src, &lo, &hi));
+  PetscCall(VecGetArrayRead(src, &s));
+  PetscCall(VecGetArray(dst, &d));
+  for (PetscInt i = std::max(lo, nq); i < hi; ++i) d[i - lo] = scale * s[i - lo];
+  PetscCall(VecRestoreArray(dst, &d));
+  PetscCall(VecRestoreArrayRead(src, &s));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode GeneralizedAlpha::initialize(double t0, Vec q0, Vec v0)
+{
+  PetscInt its;
+  SNESConvergedReason reason;
+  PetscFunctionBeginUser;
+  t_ = t0;
+  PetscCall(VecCopy(q0, q_));
+  PetscCall(VecCopy(v0, v_));
+  // Acceleration-level system [M C_q^T; C_q 0] [qdd; lambda] = [Q; -gamma]:
+  // linear in x = [qdd | lambda_hat], so one Newton step solves it.
+  newton_.ctx = AssemblyContext{};
+  newton_.ctx.t = t0;
+  newton_.ctx.kin = {0.0, 0.0, 1.0};
+  newton_.ctx.sigma = massScale_;
+  newton_.ctx.accelerationLevel = true;
+  PetscCall(assembler_.setOffsets(q_, v_, nullptr));
+  PetscCall(VecSet(x_, 0.0));
+  PetscCall(newton_.solve(x_, &its, &reason));
+  PetscCheck(reason > 0, assembler_.comm(), PETSC_ERR_NOT_CONVERGED,
+             "consistent initial accelerations: the linear solve failed (%s); is the mechanism singular "
+             "(a body without supports or a redundant constraint)?",
+             SNESConvergedReasons[reason]);
+  PetscCall(VecCopy(x_, qdd_));
+  PetscCall(VecCopy(x_, a_));
+  PetscCall(VecSet(lambda_, 0.0));
+  PetscCall(copyMultipliers(x_, lambda_, assembler_.model().numCoordinates(), massScale_));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode GeneralizedAlpha::step(double h, StepResult *result)
+{
+  const AlphaParameters &p = params_;
+  const PetscInt nq = assembler_.model().numCoordinates();
+  PetscFunctionBeginUser;
+  PetscCall(PetscLogEventBegin(logEvents().step, 0, 0, 0, 0));
+  const double h2b = h * h * p.beta;
+  const double betaP = (1.0 - p.alpha_m) / (h2b * (1.0 - p.alpha_f));
+  const double gammaP = p.gamma / (h * p.beta);
+  const double sigma = massScale_ * betaP;
+
+  // qp = q + h v + h^2 (1/2 - beta) a
+  PetscCall(VecCopy(q_, qp_));
+  PetscCall(VecAXPBYPCZ(qp_, h, h * h * (0.5 - p.beta), 1.0, v_, a_));
+  // qdd(x) = ac + beta' x with ac = -beta' qp + (alpha_m a - alpha_f qdd)/(1 - alpha_f)
+  PetscCall(VecAXPBYPCZ(ac_, p.alpha_m / (1.0 - p.alpha_f), -p.alpha_f / (1.0 - p.alpha_f), 0.0, a_, qdd_));
+  PetscCall(VecAXPY(ac_, -betaP, qp_));
+  // v(x) = vc + gamma' x with vc = v + h (1 - gamma) a - gamma' qp
+  PetscCall(VecCopy(v_, vc_));
+  PetscCall(VecAXPBYPCZ(vc_, h * (1.0 - p.gamma), -gammaP, 1.0, a_, qp_));
+
+  // Predictor: qdd_{n+1} = qdd_n, so a_{n+1} = (qdd_n - alpha_m a_n)/(1 - alpha_m).
+  PetscCall(VecCopy(qp_, x_));
+  PetscCall(VecAXPBYPCZ(x_, h2b / (1.0 - p.alpha_m), -h2b * p.alpha_m / (1.0 - p.alpha_m), 1.0, qdd_, a_));
+  PetscCall(copyMultipliers(lambda_, x_, nq, 1.0 / sigma));
+
+  newton_.ctx = AssemblyContext{};
+  newton_.ctx.t = t_ + h;
+  newton_.ctx.kin = {1.0, gammaP, betaP};
+  newton_.ctx.sigma = sigma;
+  PetscCall(assembler_.setOffsets(nullptr, vc_, ac_));
+  PetscCall(newton_.solve(x_, &result->iterations, &result->reason));
+  result->converged = result->reason > 0;
+  if (result->converged) {
+    // a_{n+1} = (q_{n+1} - qp)/(h^2 beta); qdd, v from the affine maps.
+    PetscCall(VecWAXPY(a_, -1.0, qp_, x_));
+    PetscCall(VecScale(a_, 1.0 / h2b));
+    PetscCall(VecWAXPY(qdd_, betaP, x_, ac_));
+    PetscCall(VecWAXPY(v_, gammaP, x_, vc_));
+    PetscCall(VecCopy(x_, q_));
+    PetscCall(copyMultipliers(x_, lambda_, nq, sigma));
+    t_ += h;
+  }
+  PetscCall(PetscLogEventEnd(logEvents().step, 0, 0, 0, 0));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode GeneralizedAlpha::diagnostics(EnergyParts *energy, PetscReal *violation)
+{
+  PetscFunctionBeginUser;
+  AssemblyContext ctx;
+  ctx.t = t_;
+  ctx.kin = {1.0, 0.0, 0.0};
+  // q from q_ itself (cQ = 1, qc = 0), v from v_ (cV = 0, vc = v_).
+  PetscCall(assembler_.setOffsets(nullptr, v_, nullptr));
+  PetscCall(assembler_.diagnostics(ctx, q_, energy, violation));
+  PetscFunctionReturn(0);
+}
+
+} // namespace boomdyn

@@ -1,0 +1,66 @@
+#include "boomdyn/newton_solver.hpp"
+
+namespace boomdyn {
+
+NewtonSolver::~NewtonSolver()
+{
+  if (snes_) (void)SNESDestroy(&snes_);
+  if (J_) (void)MatDestroy(&J_);
+  if (F_) (void)VecDestroy(&F_);
+}
+
+PetscErrorCode NewtonSolver::setUp(Assembler &assembler, const char *prefix, PetscInt maxIterations)
+{
+  KSP ksp;
+  PC pc;
+  SNESLineSearch ls;
+  PetscFunctionBeginUser;
+  assembler_ = &assembler;
+  PetscCall(assembler.createMatrix(&J_));
+  PetscCall(assembler.createVector(&F_));
+  PetscCall(SNESCreate(assembler.comm(), &snes_));
+  if (prefix) PetscCall(SNESSetOptionsPrefix(snes_, prefix));
+  PetscCall(SNESSetFunction(snes_, F_, formFunction, this));
+  PetscCall(SNESSetJacobian(snes_, J_, J_, formJacobian, this));
+  PetscCall(SNESSetType(snes_, SNESNEWTONLS));
+  PetscCall(SNESGetLineSearch(snes_, &ls));
+  PetscCall(SNESLineSearchSetType(ls, SNESLINESEARCHBASIC));
+  // Residuals are forces whose round-off grows like eps M/(beta h^2): an
+  // absolute tolerance that fits one step size fails at another, so the
+  // tests are relative to the first residual and to the size of x.
+  PetscCall(SNESSetTolerances(snes_, 1e-50, 1e-10, 1e-10, maxIterations, 10 * maxIterations));
+  PetscCall(SNESGetKSP(snes_, &ksp));
+  PetscCall(KSPSetType(ksp, KSPPREONLY));
+  PetscCall(KSPGetPC(ksp, &pc));
+  PetscCall(PCSetType(pc, PCLU));
+  PetscCall(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS));
+  PetscCall(SNESSetFromOptions(snes_));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode NewtonSolver::solve(Vec x, PetscInt *iterations, SNESConvergedReason *reason)
+{
+  PetscFunctionBeginUser;
+  PetscCall(SNESSolve(snes_, nullptr, x));
+  PetscCall(SNESGetIterationNumber(snes_, iterations));
+  PetscCall(SNESGetConvergedReason(snes_, reason));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode NewtonSolver::formFunction(SNES, Vec x, Vec F, void *self)
+{
+  auto *me = static_cast<NewtonSolver *>(self);
+  PetscFunctionBeginUser;
+  PetscCall(me->assembler_->evaluate(me->ctx, x, F, nullptr));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode NewtonSolver::formJacobian(SNES, Vec x, Mat J, Mat, void *self)
+{
+  auto *me = static_cast<NewtonSolver *>(self);
+  PetscFunctionBeginUser;
+  PetscCall(me->assembler_->evaluate(me->ctx, x, nullptr, J));
+  PetscFunctionReturn(0);
+}
+
+} // namespace boomdyn

@@ -1,0 +1,81 @@
+#include "boomdyn/static_solver.hpp"
+
+#include "boomdyn/log_events.hpp"
+
+#include <algorithm>
+
+namespace boomdyn {
+
+StaticSolver::~StaticSolver()
+{
+  if (lambda_) (void)VecDestroy(&lambda_);
+  if (backup_) (void)VecDestroy(&backup_);
+}
+
+PetscErrorCode StaticSolver::setUp()
+{
+  PetscFunctionBeginUser;
+  PetscCall(assembler_.createVector(&lambda_));
+  PetscCall(assembler_.createVector(&backup_));
+  PetscCall(newton_.setUp(assembler_, "static_", 50));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode StaticSolver::solve(double t, int loadSteps, Vec x,
+                                   const std::function<PetscErrorCode(const LoadStepInfo &)> &onStep,
+                                   PetscBool *converged)
+{
+  const PetscInt nq = assembler_.model().numCoordinates();
+  PetscFunctionBeginUser;
+  PetscCall(PetscLogEventBegin(logEvents().statics, 0, 0, 0, 0));
+  PetscReal mass, stiffness;
+  PetscCall(assembler_.characteristicScales(x, &mass, &stiffness));
+  sigma_ = stiffness > 0 ? stiffness : 1.0;
+  newton_.ctx = AssemblyContext{};
+  newton_.ctx.t = t;
+  newton_.ctx.kin = {1.0, 0.0, 0.0};
+  newton_.ctx.sigma = sigma_;
+  PetscCall(assembler_.setOffsets(nullptr, nullptr, nullptr));
+
+  double done = 0.0, increment = 1.0 / loadSteps;
+  const double minIncrement = increment / 1024.0;
+  *converged = PETSC_TRUE;
+  while (done < 1.0 - 1e-14) {
+    const double target = std::min(1.0, done + increment);
+    newton_.ctx.loadFactor = target;
+    PetscCall(VecCopy(x, backup_));
+    PetscInt its;
+    SNESConvergedReason reason;
+    PetscCall(newton_.solve(x, &its, &reason));
+    if (reason > 0) {
+      done = target;
+      if (onStep) PetscCall(onStep({done, its}));
+      continue;
+    }
+    PetscCall(VecCopy(backup_, x));
+    increment *= 0.5;
+    PetscCall(PetscInfo(nullptr, "load increment to %g failed (%s); halving to %g\n", (double)target,
+                        SNESConvergedReasons[reason], increment));
+    if (increment < minIncrement) {
+      *converged = PETSC_FALSE;
+      PetscCall(PetscPrintf(assembler_.comm(), "static solve failed at load factor %g: %s\n", done + 2 * increment,
+                            SNESConvergedReasons[reason]));
+      break;
+    }
+  }
+  // Unscaled multipliers.
+  PetscInt lo, hi;
+  const PetscScalar *xs;
+  PetscScalar *ls;
+  PetscCall(VecSet(lambda_, 0.0));
+  PetscCall(VecGetOwnershipRange(x, &lo, &hi));
+  PetscCall(VecGetArrayRead(x, &xs));
+  PetscCall(VecGetArray(lambda_, &ls));
+  for (PetscInt i = std::max(lo, nq); i < hi; ++i) ls[i - lo] = sigma_ * xs[i - lo];
+  PetscCall(VecRestoreArray(lambda_, &ls));
+  PetscCall(VecRestoreArrayRead(x, &xs));
+  PetscCall(PetscLogEventEnd(logEvents().statics, 0, 0, 0, 0));
+  PetscFunctionReturn(0);
+}
+
+} // namespace boomdyn

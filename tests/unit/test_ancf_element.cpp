@@ -1,0 +1,140 @@
+// Planar ANCF cable element: forces against the energy, tangent against
+// central finite differences, rigid-motion invariance, exact mass moments.
+#include "boomdyn/ancf_element.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+using namespace boomdyn::ancf;
+
+namespace {
+
+const Section kSteelBox{2.1e11 * 4.0e-3, 2.1e11 * 2.5e-5, 7850 * 4.0e-3};
+
+// A straight element rotated by `angle`, with a random deformation of relative size `amp`.
+Vec8 deformedState(std::mt19937 &rng, double l, double amp)
+{
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  const double angle = 3.0 * u(rng);
+  Vec8 e = straightElement(Vec2(u(rng), u(rng)), Vec2(std::cos(angle), std::sin(angle)), l);
+  for (int k = 0; k < 8; ++k) e[k] += amp * u(rng) * ((k % 4) < 2 ? l : 1.0);
+  return e;
+}
+
+double relErr(const Eigen::MatrixXd &a, const Eigen::MatrixXd &b) { return (a - b).norm() / b.norm(); }
+
+} // namespace
+
+TEST(AncfElement, InternalForceIsEnergyGradient)
+{
+  std::mt19937 rng(1);
+  const double l = 0.25;
+  for (int trial = 0; trial < 6; ++trial) {
+    const Vec8 e = deformedState(rng, l, 0.05);
+    Vec8 f;
+    internalForce(kSteelBox, l, e, f, nullptr);
+    Vec8 fd;
+    for (int k = 0; k < 8; ++k) {
+      const double h = 1e-6 * ((k % 4) < 2 ? l : 1.0);
+      Vec8 ep = e, em = e;
+      ep[k] += h, em[k] -= h;
+      fd[k] = (strainEnergy(kSteelBox, l, ep) - strainEnergy(kSteelBox, l, em)) / (2 * h);
+    }
+    EXPECT_LT(relErr(f, fd), 1e-6) << "trial " << trial;
+  }
+}
+
+TEST(AncfElement, TangentMatchesCentralDifferences)
+{
+  std::mt19937 rng(2);
+  const double l = 0.25;
+  for (int trial = 0; trial < 8; ++trial) {
+    const Vec8 e = deformedState(rng, l, trial < 4 ? 0.02 : 0.2);
+    Vec8 f;
+    Mat8 K;
+    internalForce(kSteelBox, l, e, f, &K);
+    Mat8 fd;
+    for (int k = 0; k < 8; ++k) {
+      const double h = 1e-7 * ((k % 4) < 2 ? l : 1.0);
+      Vec8 ep = e, em = e, fp, fm;
+      ep[k] += h, em[k] -= h;
+      internalForce(kSteelBox, l, ep, fp, nullptr);
+      internalForce(kSteelBox, l, em, fm, nullptr);
+      fd.col(k) = (fp - fm) / (2 * h);
+    }
+    EXPECT_LT(relErr(K, fd), 1e-6) << "trial " << trial;
+    EXPECT_LT((K - K.transpose()).norm(), 1e-12 * K.norm()) << "tangent must be symmetric";
+  }
+}
+
+TEST(AncfElement, RigidMotionsGiveNoElasticForce)
+{
+  const double l = 0.5;
+  for (double angle : {0.0, 0.3, 1.7, -2.9}) {
+    const Vec8 e = straightElement(Vec2(1.3, -0.4), Vec2(std::cos(angle), std::sin(angle)), l);
+    Vec8 f;
+    Mat8 K;
+    internalForce(kSteelBox, l, e, f, &K);
+    EXPECT_LT(f.norm(), 1e-9 * kSteelBox.EA) << "angle " << angle;
+    EXPECT_NEAR(strainEnergy(kSteelBox, l, e), 0.0, 1e-12);
+    // Rigid translations are in the null space of the tangent of an unstrained element.
+    Vec8 tx, ty;
+    tx << 1, 0, 0, 0, 1, 0, 0, 0;
+    ty << 0, 1, 0, 0, 0, 1, 0, 0;
+    EXPECT_LT((K * tx).norm(), 1e-9 * K.norm());
+    EXPECT_LT((K * ty).norm(), 1e-9 * K.norm());
+  }
+}
+
+TEST(AncfElement, MassMatrixReproducesMassAndMoments)
+{
+  const double l = 0.7, rhoA = 31.4;
+  const Mat8 M = massMatrix(rhoA, l);
+  Vec8 translation, linear;
+  translation << 1, 0, 0, 0, 1, 0, 0, 0;                 // r(x) = (1, 0)
+  linear = straightElement(Vec2(0, 0), Vec2(1, 0), l);   // r(x) = (x, 0)
+  EXPECT_NEAR(translation.dot(M * translation), rhoA * l, 1e-14 * rhoA * l);
+  EXPECT_NEAR(translation.dot(M * linear), rhoA * l * l / 2, 1e-14 * rhoA * l * l);
+  EXPECT_NEAR(linear.dot(M * linear), rhoA * l * l * l / 3, 1e-14 * rhoA * l * l * l);
+  // Mass matrix against 5-point Gauss quadrature of rhoA S^T S (exact for degree 6).
+  Mat8 Mq = Mat8::Zero();
+  const double x[5] = {0.04691007703066800, 0.2307653449471585, 0.5, 0.7692346550528415, 0.9530899229693320};
+  const double w[5] = {0.1184634425280945, 0.2393143352496832, 0.2844444444444444, 0.2393143352496832, 0.1184634425280945};
+  for (int p = 0; p < 5; ++p) {
+    const Mat28 S = shapeMatrix(x[p], l);
+    Mq += w[p] * l * rhoA * S.transpose() * S;
+  }
+  EXPECT_LT((M - Mq).norm(), 1e-12 * M.norm());
+  // Gravity is the mass matrix applied to a uniform field.
+  Vec8 g8;
+  g8 << 0, -9.81, 0, 0, 0, -9.81, 0, 0;
+  EXPECT_LT((gravityForce(rhoA, l, Vec2(0, -9.81)) - M * g8).norm(), 1e-12 * (M * g8).norm());
+}
+
+TEST(AncfElement, ShapeFunctionDerivativesMatchDifferences)
+{
+  const double l = 0.3, h = 1e-6;
+  for (double xi : {1e-3, 0.17, 0.5, 0.93, 1.0 - 1e-3}) {
+    for (int d = 0; d < 3; ++d) {
+      const Eigen::Vector4d fd = (shapeValues(xi + h, l, d) - shapeValues(xi - h, l, d)) / (2 * h * l);
+      EXPECT_LT((shapeValues(xi, l, d + 1) - fd).norm(), 1e-6 * (1 + fd.norm())) << "xi " << xi << " d " << d;
+    }
+  }
+  // Interpolation: nodal values and slopes.
+  const Vec8 e = straightElement(Vec2(0.2, 0.1), Vec2(0.6, 0.8), l);
+  EXPECT_LT((position(e, 0.0, l) - Vec2(0.2, 0.1)).norm(), 1e-15);
+  EXPECT_LT((position(e, 1.0, l) - Vec2(0.2 + 0.6 * l, 0.1 + 0.8 * l)).norm(), 1e-15);
+  EXPECT_LT((position(e, 0.4, l, 1) - Vec2(0.6, 0.8)).norm(), 1e-14);
+}
+
+TEST(AncfElement, CurvatureOfACircularArc)
+{
+  // Nodes on a circle of radius R with tangent slopes: K ~ 1/R, eps ~ 0 for small arcs.
+  const double R = 2.0, l = 0.05, phi = l / R;
+  Vec8 e;
+  e << R, 0, 0, 1, R * std::cos(phi), R * std::sin(phi), -std::sin(phi), std::cos(phi);
+  EXPECT_NEAR(curvature(e, 0.5, l), 1.0 / R, 1e-4 / R);
+  EXPECT_NEAR(axialStrain(e, 0.5, l), 0.0, 1e-5);
+}
