@@ -1,5 +1,7 @@
 #include "boomdyn/eigen_solver.hpp"
 
+#include "boomdyn/direct_solver.hpp"
+
 #include "boomdyn/log_events.hpp"
 
 #include <slepceps.h>
@@ -18,10 +20,15 @@ PetscErrorCode solveModes(Assembler &assembler, double t, Vec q, Vec lambda, int
   EPS eps;
   ST st;
   KSP ksp;
-  PC pc;
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(logEvents().eigen, 0, 0, 0, 0));
-  // x = [q | lambda] with sigma = 1 (the Hessian term then uses lambda itself).
+  // x = [q | lambda / sigma]. The constraint blocks are scaled by sigma, a
+  // typical stiffness diagonal: with sigma = 1 they are ~1e-9 of K for steel
+  // booms and MUMPS's threshold pivoting declares A - target B singular.
+  // The eigenvalues do not depend on sigma.
+  PetscReal massScale, stiffScale;
+  PetscCall(assembler.characteristicScales(q, &massScale, &stiffScale));
+  const double sigma = stiffScale > 0 ? stiffScale : 1.0;
   PetscCall(assembler.createVector(&x));
   {
     PetscInt lo, hi;
@@ -31,14 +38,14 @@ PetscErrorCode solveModes(Assembler &assembler, double t, Vec q, Vec lambda, int
     PetscCall(VecGetArrayRead(q, &qa));
     PetscCall(VecGetArrayRead(lambda, &la));
     PetscCall(VecGetArray(x, &xa));
-    for (PetscInt i = lo; i < hi; ++i) xa[i - lo] = i < nq ? qa[i - lo] : la[i - lo];
+    for (PetscInt i = lo; i < hi; ++i) xa[i - lo] = i < nq ? qa[i - lo] : la[i - lo] / sigma;
     PetscCall(VecRestoreArray(x, &xa));
     PetscCall(VecRestoreArrayRead(lambda, &la));
     PetscCall(VecRestoreArrayRead(q, &qa));
   }
   AssemblyContext ctx;
   ctx.t = t;
-  ctx.sigma = 1.0;
+  ctx.sigma = sigma;
   PetscCall(assembler.setOffsets(nullptr, nullptr, nullptr));
   PetscCall(assembler.createMatrix(&A));
   PetscCall(assembler.createMatrix(&B));
@@ -47,6 +54,7 @@ PetscErrorCode solveModes(Assembler &assembler, double t, Vec q, Vec lambda, int
   // B: the same pattern as A (explicit zeros), so ST can combine them cheaply.
   ctx.kin = {0.0, 0.0, 1.0};
   ctx.constraintBlocks = false;
+  PetscCall(assembler.setOffsets(x, nullptr, nullptr)); // q = x (cQ = 0), so every kernel sees the real state
   PetscCall(assembler.evaluate(ctx, x, nullptr, B));
 
   PetscCall(EPSCreate(assembler.comm(), &eps));
@@ -63,10 +71,7 @@ PetscErrorCode solveModes(Assembler &assembler, double t, Vec q, Vec lambda, int
   PetscCall(EPSGetST(eps, &st));
   PetscCall(STSetType(st, STSINVERT));
   PetscCall(STGetKSP(st, &ksp));
-  PetscCall(KSPSetType(ksp, KSPPREONLY));
-  PetscCall(KSPGetPC(ksp, &pc));
-  PetscCall(PCSetType(pc, PCLU));
-  PetscCall(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS));
+  PetscCall(useDirectSolver(ksp));
   PetscCall(EPSSetFromOptions(eps));
   PetscCall(EPSSolve(eps));
   PetscInt nconv;

@@ -22,13 +22,14 @@ void BeamElementItem::evaluate(const AssemblyContext &ctx, const ItemValues &in,
   const Eigen::Map<const ancf::Vec8> q(in.q), a(in.a);
   Eigen::Map<ancf::Vec8> r(residual);
   ancf::Vec8 f;
-  if (J) {
+  if (J && ctx.kin.cQ != 0.0) {
     ancf::Mat8 K;
     ancf::internalForce(beam_->section(), beam_->elementLength(), q, f, &K);
     Eigen::Map<Eigen::Matrix<double, 8, 8, Eigen::RowMajor>> Jm(J);
     Jm = ctx.kin.cA * (*mass_) + ctx.kin.cQ * K;
   } else {
     ancf::internalForce(beam_->section(), beam_->elementLength(), q, f, nullptr);
+    if (J) Eigen::Map<Eigen::Matrix<double, 8, 8, Eigen::RowMajor>>{J} = ctx.kin.cA * (*mass_);
   }
   r = (*mass_) * a + f - ctx.loadFactor * gravity_;
 }

@@ -49,8 +49,9 @@ private:
   Closer closer_ = nullptr;
 };
 
-// The innermost message on HDF5's error stack (the most specific one, e.g.
-// "file exists" rather than "unable to create file"); clears the stack.
+// The innermost message on HDF5's error stack, the most specific one (e.g.
+// the errno text of a failed open rather than "unable to create file");
+// clears the stack.
 std::string takeHdf5ErrorDetail()
 {
   std::string detail;
@@ -87,8 +88,6 @@ std::string normalizePath(const std::string &path)
 constexpr std::size_t kChunkBytes = 256 * 1024;
 constexpr std::size_t kMaxChunkRows = 1024;
 
-} // namespace
-
 // One appendable dataset, kept open between appends.
 struct Series {
   Handle dataset;
@@ -98,6 +97,8 @@ struct Series {
   std::size_t ncols = 0;
   hsize_t rows = 0;
 };
+
+} // namespace
 
 struct Hdf5File::Impl {
   std::string path;

@@ -114,12 +114,15 @@ NumberText parseNumber(const std::string &text, double &value)
   return std::isfinite(value) ? NumberText::Ok : NumberText::NotFinite;
 }
 
-// A value in the document: the node, its key path for messages and the
-// position to report.
+// A value in the document: the node, its key path for messages, the
+// position to report for errors in the value, and the position of its key
+// (or list item), reported for keys missing inside it: "dynamic:" is where
+// a reader looks for the dynamic section, not the first key below it.
 struct Field {
   YAML::Node node;
   std::string path;
   YAML::Mark mark;
+  YAML::Mark key_mark;
 };
 
 std::string childPath(const std::string &parent, const std::string &key)
@@ -182,7 +185,7 @@ public:
       // An empty value has no position of its own (yaml-cpp reports the
       // next token), so point at its key instead.
       const YAML::Mark mark = value.IsNull() ? key.Mark() : value.Mark();
-      entries_.emplace(name, Entry{key.Mark(), Field{value, path, mark}});
+      entries_.emplace(name, Entry{key.Mark(), Field{value, path, mark, key.Mark()}});
     }
   }
 
@@ -201,7 +204,7 @@ public:
   {
     const auto it = entries_.find(key);
     if (it == entries_.end())
-      report_.fail(self_.mark, childPath(self_.path, key), "missing required key" + hint);
+      report_.fail(self_.key_mark, childPath(self_.path, key), "missing required key" + hint);
     return it->second.field;
   }
 
@@ -226,7 +229,9 @@ private:
   static std::string unknownKeyReason(const std::string &name, const std::vector<std::string> &allowed)
   {
     std::string reason = "unknown key";
-    std::size_t best = 3; // suggest only close matches
+    // Suggest only close matches that share at least one character
+    // position, so that "G" does not suggest "E".
+    std::size_t best = std::min<std::size_t>(3, name.size());
     std::string suggestion;
     for (const auto &candidate : allowed) {
       const std::size_t d = editDistance(name, candidate);
@@ -354,7 +359,7 @@ private:
     for (std::size_t i = 0; i < f.node.size(); ++i) {
       const YAML::Node item = f.node[i];
       const YAML::Mark mark = item.IsNull() ? f.mark : item.Mark();
-      items.push_back(Field{item, f.path + "[" + std::to_string(i) + "]", mark});
+      items.push_back(Field{item, f.path + "[" + std::to_string(i) + "]", mark, mark});
     }
     return items;
   }
@@ -859,7 +864,7 @@ Scene parseChecked(const std::string &text, const std::string &file_label)
   Scene scene;
   scene.file = file_label;
   scene.text = text;
-  SceneParser(report).parse(Field{documents[0], "", documents[0].Mark()}, scene);
+  SceneParser(report).parse(Field{documents[0], "", documents[0].Mark(), documents[0].Mark()}, scene);
   return scene;
 }
 

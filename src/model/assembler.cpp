@@ -98,8 +98,11 @@ PetscErrorCode Assembler::createMatrix(Mat *J) const
   PetscCall(MatCreate(comm_, J));
   PetscCall(MatSetSizes(*J, nlocal, nlocal, model_.size(), model_.size()));
   PetscCall(MatSetType(*J, MATAIJ));
-  PetscCall(MatSetPreallocationCOO(*J, static_cast<PetscCount>(cooI_.size()), const_cast<PetscInt *>(cooI_.data()),
-                                   const_cast<PetscInt *>(cooJ_.data())));
+  // MatSetPreallocationCOO may reorder or mark the index arrays it is given:
+  // hand it copies so that every matrix built here gets the same pattern in
+  // the order of cooV_ (a shared array gave the second matrix scrambled values).
+  std::vector<PetscInt> I(cooI_), Jc(cooJ_);
+  PetscCall(MatSetPreallocationCOO(*J, static_cast<PetscCount>(I.size()), I.data(), Jc.data()));
   PetscFunctionReturn(0);
 }
 

@@ -98,9 +98,10 @@ PetscErrorCode GeneralizedAlpha::step(double h, StepResult *result)
   PetscCall(VecCopy(v_, vc_));
   PetscCall(VecAXPBYPCZ(vc_, h * (1.0 - p.gamma), -gammaP, 1.0, a_, qp_));
 
-  // Predictor: qdd_{n+1} = qdd_n, so a_{n+1} = (qdd_n - alpha_m a_n)/(1 - alpha_m).
-  PetscCall(VecCopy(qp_, x_));
-  PetscCall(VecAXPBYPCZ(x_, h2b / (1.0 - p.alpha_m), -h2b * p.alpha_m / (1.0 - p.alpha_m), 1.0, qdd_, a_));
+  // Predictor q_{n+1} = q_n + h v_n. Extrapolating accelerations instead
+  // carries the large initial accelerations of stiff modes (a suddenly
+  // applied load) over a whole step and starts Newton far from the solution.
+  PetscCall(VecWAXPY(x_, h, v_, q_));
   PetscCall(copyMultipliers(lambda_, x_, nq, 1.0 / sigma));
 
   newton_.ctx = AssemblyContext{};

@@ -1,5 +1,7 @@
 #include "boomdyn/newton_solver.hpp"
 
+#include "boomdyn/direct_solver.hpp"
+
 namespace boomdyn {
 
 NewtonSolver::~NewtonSolver()
@@ -12,7 +14,6 @@ NewtonSolver::~NewtonSolver()
 PetscErrorCode NewtonSolver::setUp(Assembler &assembler, const char *prefix, PetscInt maxIterations)
 {
   KSP ksp;
-  PC pc;
   SNESLineSearch ls;
   PetscFunctionBeginUser;
   assembler_ = &assembler;
@@ -30,10 +31,7 @@ PetscErrorCode NewtonSolver::setUp(Assembler &assembler, const char *prefix, Pet
   // tests are relative to the first residual and to the size of x.
   PetscCall(SNESSetTolerances(snes_, 1e-50, 1e-10, 1e-10, maxIterations, 10 * maxIterations));
   PetscCall(SNESGetKSP(snes_, &ksp));
-  PetscCall(KSPSetType(ksp, KSPPREONLY));
-  PetscCall(KSPGetPC(ksp, &pc));
-  PetscCall(PCSetType(pc, PCLU));
-  PetscCall(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS));
+  PetscCall(useDirectSolver(ksp));
   PetscCall(SNESSetFromOptions(snes_));
   PetscFunctionReturn(0);
 }

@@ -1,0 +1,54 @@
+// The results file of a run (layout in docs/output.md), written by rank 0.
+// Every method is collective-safe: on other ranks it does nothing except
+// take part in the gathers of distributed vectors.
+#pragma once
+
+#include "boomdyn/eigen_solver.hpp"
+#include "boomdyn/hdf5_file.hpp"
+#include "boomdyn/model.hpp"
+#include "boomdyn/sensors.hpp"
+
+#include <petscvec.h>
+
+#include <memory>
+#include <string>
+
+namespace boomdyn {
+
+struct RunInfo {
+  std::string commandLine, petscOptions, version;
+  int ranks = 1;
+};
+
+class ResultsWriter {
+public:
+  ResultsWriter(const Model &model, MPI_Comm comm) : model_(model), comm_(comm) {}
+  ~ResultsWriter();
+  ResultsWriter(const ResultsWriter &) = delete;
+  ResultsWriter &operator=(const ResultsWriter &) = delete;
+
+  // Creates the file (refuses to overwrite unless asked) and writes the
+  // scene, run information and layout. layout: a vector with x's layout.
+  PetscErrorCode open(const std::string &path, bool overwrite, const RunInfo &info, Vec layout);
+  PetscErrorCode appendStep(double t, double dt, PetscInt iterations, double violation, const EnergyParts &energy,
+                            const std::vector<SensorReading> &sensors);
+  // Full state snapshot; lambda holds unscaled multipliers in its last entries.
+  PetscErrorCode appendState(double t, Vec q, Vec v, Vec lambda);
+  PetscErrorCode writeModes(double t, const ModalResult &modes);
+  PetscErrorCode finish(const std::string &status, PetscInt steps, PetscInt rejected, double wallTime,
+                        double maxViolation);
+  const std::string &path() const { return path_; }
+
+private:
+  PetscErrorCode gather(Vec v, std::vector<double> &out);
+
+  const Model &model_;
+  MPI_Comm comm_;
+  int rank_ = 0;
+  std::string path_;
+  std::unique_ptr<Hdf5File> file_;
+  VecScatter toZero_ = nullptr;
+  Vec gathered_ = nullptr;
+};
+
+} // namespace boomdyn

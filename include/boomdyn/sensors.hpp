@@ -1,0 +1,37 @@
+// Sensors: position and velocity of named material points, gathered on
+// rank 0 from the distributed state through one small VecScatter.
+#pragma once
+
+#include "boomdyn/model.hpp"
+
+#include <petscvec.h>
+
+#include <vector>
+
+namespace boomdyn {
+
+struct SensorReading {
+  Vec2 position = Vec2::Zero(), velocity = Vec2::Zero();
+};
+
+class SensorProbe {
+public:
+  explicit SensorProbe(const Model &model) : model_(model) {}
+  ~SensorProbe();
+  SensorProbe(const SensorProbe &) = delete;
+  SensorProbe &operator=(const SensorProbe &) = delete;
+
+  // layout: any vector with the layout of x.
+  PetscErrorCode setUp(Vec layout);
+  // Readings of every sensor (valid on rank 0 only; other ranks get zeros).
+  PetscErrorCode read(Vec q, Vec v, std::vector<SensorReading> &out);
+
+private:
+  const Model &model_;
+  std::vector<CenterlineLocation> locations_;
+  VecScatter scatter_ = nullptr;
+  Vec gathered_ = nullptr;
+  int rank_ = 0;
+};
+
+} // namespace boomdyn

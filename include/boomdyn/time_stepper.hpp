@@ -1,0 +1,31 @@
+// The time loop around GeneralizedAlpha: steps of the scene's dt up to
+// t_end; a step whose Newton iteration fails is retried with half the step
+// (down to dt_min, then the run stops with a message), and the step grows
+// back after a run of successes. Never accepts a failed step.
+#pragma once
+
+#include "boomdyn/generalized_alpha.hpp"
+#include "boomdyn/scene.hpp"
+
+#include <functional>
+#include <string>
+
+namespace boomdyn {
+
+struct StepInfo {
+  PetscInt step = 0;         // accepted steps so far
+  double t = 0, h = 0;       // time reached and the step that reached it
+  PetscInt iterations = 0;   // Newton iterations of this step
+  PetscInt rejected = 0;     // rejected attempts so far (whole run)
+};
+
+struct RunSummary {
+  bool completed = false;
+  std::string failure;       // reason when not completed
+  PetscInt steps = 0, rejected = 0, newtonIterations = 0;
+};
+
+PetscErrorCode integrate(GeneralizedAlpha &integrator, const DynamicSpec &spec,
+                         const std::function<PetscErrorCode(const StepInfo &)> &onStep, RunSummary *summary);
+
+} // namespace boomdyn

@@ -1,0 +1,151 @@
+"""Reading boomdyn results files (layout: docs/output.md).
+
+Every loader returns None (or an empty container) when its part of the file
+is absent, so that tools can work on files of failed or partial runs.
+"""
+
+from dataclasses import dataclass, field
+
+import h5py
+import numpy as np
+
+ENERGY_COLUMNS = ("kinetic", "strain", "gravity potential", "total")
+ANCF_COORDINATES_PER_NODE = 4  # x, y, dx/ds, dy/ds
+
+
+def open_run(path):
+    """The results file, opened read-only (usable as a context manager)."""
+    return h5py.File(path, "r")
+
+
+def _plain(value):
+    """An attribute value as a plain Python object (str, int, float, list)."""
+    if isinstance(value, bytes):
+        return value.decode("utf-8")
+    if isinstance(value, np.ndarray):
+        return value.tolist()
+    if isinstance(value, np.generic):
+        return value.item()
+    return value
+
+
+def _strings(dataset):
+    return [s.decode("utf-8") if isinstance(s, bytes) else str(s) for s in dataset[()]]
+
+
+def _array(group, name):
+    """Dataset `name` of `group` as an array, or None when it is missing or empty."""
+    if group is None or name not in group:
+        return None
+    data = group[name][()]
+    return data if np.size(data) > 0 else None
+
+
+def attributes(f, path="/"):
+    """The attributes of the object at `path` as a dict ({} if it is absent)."""
+    if path not in f:
+        return {}
+    return {key: _plain(value) for key, value in f[path].attrs.items()}
+
+
+def scene_name(f):
+    return str(attributes(f).get("scene_name", "unnamed scene"))
+
+
+def is_static(f):
+    return attributes(f).get("analysis") == "static"
+
+
+@dataclass
+class Body:
+    name: str
+    first: int  # index of the first coordinate in q
+    count: int  # number of coordinates
+
+    @property
+    def is_beam(self):
+        # The layout carries no body type: an ANCF beam is recognized by its
+        # 4 coordinates per node and at least 2 nodes (a rigid body has fewer).
+        return self.count >= 2 * ANCF_COORDINATES_PER_NODE and self.count % ANCF_COORDINATES_PER_NODE == 0
+
+    def node_positions(self, q):
+        """Nodal (x, y) of this beam from q of shape (..., nq): shape (..., nodes, 2)."""
+        q = np.asarray(q)
+        block = q[..., self.first:self.first + self.count]
+        nodes = block.reshape(q.shape[:-1] + (self.count // ANCF_COORDINATES_PER_NODE, ANCF_COORDINATES_PER_NODE))
+        return nodes[..., :2]
+
+
+@dataclass
+class Constraint:
+    name: str
+    first_row: int
+    num_rows: int
+
+
+@dataclass
+class Layout:
+    nq: int
+    nlambda: int
+    bodies: list = field(default_factory=list)
+    constraints: list = field(default_factory=list)
+
+    def body(self, name):
+        return next(b for b in self.bodies if b.name == name)
+
+
+def load_layout(f):
+    if "layout" not in f:
+        return None
+    g = f["layout"]
+    bodies, constraints = [], []
+    if "body_names" in g:
+        bodies = [Body(name, int(first), int(count)) for name, first, count in
+                  zip(_strings(g["body_names"]), g["body_first_coordinate"][()], g["body_num_coordinates"][()])]
+    if "constraint_names" in g:
+        constraints = [Constraint(name, int(first), int(rows)) for name, first, rows in
+                       zip(_strings(g["constraint_names"]), g["constraint_first_row"][()],
+                           g["constraint_num_rows"][()])]
+    return Layout(int(g.attrs.get("nq", 0)), int(g.attrs.get("nlambda", 0)), bodies, constraints)
+
+
+def load_steps(f):
+    """{"time", "dt", "newton_iterations", "constraint_violation", "energy"}: whichever are present."""
+    group = f.get("steps")
+    names = ("time", "dt", "newton_iterations", "constraint_violation", "energy")
+    steps = {name: _array(group, name) for name in names}
+    return {name: data for name, data in steps.items() if data is not None}
+
+
+def load_sensors(f):
+    """{sensor name: {"position": (n, 2), "velocity": (n, 2)}} with whichever are present."""
+    sensors = {}
+    for name, group in f.get("sensors", {}).items():
+        series = {key: _array(group, key) for key in ("position", "velocity")}
+        series = {key: data for key, data in series.items() if data is not None}
+        if series:
+            sensors[name] = series
+    return sensors
+
+
+def load_states(f):
+    """{"time": (m), "q": (m, nq), "v": ..., "lambda": ...} or None without snapshots."""
+    group = f.get("state")
+    states = {name: _array(group, name) for name in ("time", "q", "v", "lambda")}
+    if states["time"] is None or states["q"] is None:
+        return None
+    return {name: data for name, data in states.items() if data is not None}
+
+
+def load_modal(f):
+    """{"frequencies_hz": (k), "shapes": (k, nq) or None, "state_time": float or None} or None."""
+    group = f.get("modal")
+    frequencies = _array(group, "frequencies_hz")
+    if frequencies is None:
+        return None
+    return {"frequencies_hz": frequencies, "shapes": _array(group, "shapes"),
+            "state_time": _plain(group.attrs.get("state_time"))}
+
+
+def load_summary(f):
+    return attributes(f, "/summary")

@@ -1,0 +1,218 @@
+#!/usr/bin/env python3
+"""Plots of one boomdyn run: python3 postprocess/plot_run.py RUN.h5 [-o OUTDIR]
+
+Writes PNG files (sensor positions, tip height, solver effort, constraint
+violation, energy, modal frequencies, boom shapes) into OUTDIR, by default
+RUN's stem + "_plots" beside RUN. Plots whose data the file lacks are skipped,
+so files of failed or partial runs still give what they can.
+"""
+
+import argparse
+import sys
+from pathlib import Path
+
+try:
+    import matplotlib
+    matplotlib.use("Agg")  # files only, no display needed
+    import matplotlib.ticker
+    import matplotlib.pyplot as plt
+    import numpy as np
+    import boomdyn_h5
+except ImportError as error:
+    sys.exit(f"plot_run.py needs numpy, h5py and matplotlib ({error}); this Python is {sys.executable}. "
+             "On Debian: apt-get install python3-h5py python3-matplotlib, and run it with /usr/bin/python3.")
+
+SNAPSHOTS_SHOWN = 5  # boom shapes drawn, spread over the run
+
+
+def tip_sensor(sensors):
+    """The sensor whose name says it is at the tip, if any."""
+    return next((name for name in sensors if "tip" in name.lower()), None)
+
+
+class Plotter:
+    def __init__(self, f, outdir):
+        self.f = f
+        self.outdir = Path(outdir)
+        self.scene = boomdyn_h5.scene_name(f)
+        self.static = boomdyn_h5.is_static(f)
+        # Static runs store the load factor where dynamic runs store time.
+        self.time_name = "load factor" if self.static else "time"
+        self.time_axis = "load factor [-]" if self.static else "time [s]"
+        self.time_unit = "" if self.static else " s"
+        self.written = []
+
+    def figure(self, rows=1, height=4.0):
+        fig, axes = plt.subplots(rows, 1, figsize=(8, height * rows), sharex=rows > 1, squeeze=False)
+        return fig, axes[:, 0]
+
+    def save(self, fig, name, title):
+        fig.suptitle(f"{self.scene}: {title}")
+        fig.tight_layout()
+        self.outdir.mkdir(parents=True, exist_ok=True)
+        path = self.outdir / f"{name}.png"
+        fig.savefig(path, dpi=120)
+        plt.close(fig)
+        self.written.append(path)
+
+    @staticmethod
+    def skip(what, why):
+        print(f"skipped {what}: {why}")
+
+    def sensor_positions(self, steps, sensors):
+        if "time" not in steps or not any("position" in s for s in sensors.values()):
+            return self.skip("sensor positions", "no /steps/time or /sensors/*/position")
+        fig, (ax_x, ax_y) = self.figure(rows=2, height=3.2)
+        for name, series in sensors.items():
+            if "position" in series:
+                n = min(len(steps["time"]), len(series["position"]))
+                ax_x.plot(steps["time"][:n], series["position"][:n, 0], label=name)
+                ax_y.plot(steps["time"][:n], series["position"][:n, 1], label=name)
+        ax_x.set_ylabel("x [m]")
+        ax_y.set_ylabel("y [m]")
+        ax_y.set_xlabel(self.time_axis)
+        for ax in (ax_x, ax_y):
+            ax.grid(True)
+            ax.legend(loc="best", fontsize="small")
+        self.save(fig, "sensor_positions", "sensor positions")
+
+    def tip_height(self, steps, sensors, layout, states):
+        tip = tip_sensor(sensors)
+        if tip and "time" in steps and "position" in sensors[tip]:
+            n = min(len(steps["time"]), len(sensors[tip]["position"]))
+            t, y, source = steps["time"][:n], sensors[tip]["position"][:n, 1], f"sensor '{tip}'"
+        elif layout and states and any(b.is_beam for b in layout.bodies):
+            # Without a tip sensor: the last node of the last beam, at the snapshots only.
+            beam = [b for b in layout.bodies if b.is_beam][-1]
+            t, y = states["time"], beam.node_positions(states["q"])[:, -1, 1]
+            source = f"last node of '{beam.name}'"
+        else:
+            return self.skip("tip height", "no sensor named *tip* and no beam snapshots in /state")
+        fig, (ax,) = self.figure()
+        ax.plot(t, y, marker="." if len(t) < 50 else None)
+        ax.set_xlabel(self.time_axis)
+        ax.set_ylabel("tip y [m]")
+        ax.grid(True)
+        self.save(fig, "tip_vertical_position", f"tip vertical position ({source})")
+
+    def solver_effort(self, steps):
+        if "time" not in steps or ("newton_iterations" not in steps and "dt" not in steps):
+            return self.skip("solver effort", "no /steps/newton_iterations or /steps/dt")
+        fig, (ax_it, ax_dt) = self.figure(rows=2, height=3.2)
+        if "newton_iterations" in steps:
+            ax_it.step(steps["time"], steps["newton_iterations"], where="post")
+        ax_it.set_ylim(bottom=0)  # counts: from 0, in whole ticks
+        ax_it.yaxis.set_major_locator(matplotlib.ticker.MaxNLocator(integer=True))
+        ax_it.set_ylabel("Newton iterations [-]")
+        if "dt" in steps:
+            dt = steps["dt"]
+            ax_dt.plot(steps["time"], dt)
+            if dt.min() > 0 and dt.max() > 10 * dt.min():  # step cuts span decades
+                ax_dt.set_yscale("log")
+        ax_dt.set_ylabel("load-factor increment [-]" if self.static else "time step dt [s]")
+        ax_dt.set_xlabel(self.time_axis)
+        for ax in (ax_it, ax_dt):
+            ax.grid(True)
+        self.save(fig, "solver_effort", "Newton iterations and step size")
+
+    def constraint_violation(self, steps):
+        if "time" not in steps or "constraint_violation" not in steps:
+            return self.skip("constraint violation", "no /steps/constraint_violation")
+        violation = steps["constraint_violation"]
+        positive = violation > 0
+        if not positive.any():  # a log axis cannot show zeros
+            return self.skip("constraint violation", "it is zero at every step")
+        fig, (ax,) = self.figure()
+        ax.semilogy(steps["time"][positive], violation[positive])
+        ax.set_xlabel(self.time_axis)
+        ax.set_ylabel("max |C| [m or -]")  # pin rows are lengths, angle rows are not
+        ax.grid(True, which="both")
+        self.save(fig, "constraint_violation", "constraint violation")
+
+    def energy(self, steps):
+        if "time" not in steps or "energy" not in steps:
+            return self.skip("energy", "no /steps/energy")
+        fig, (ax,) = self.figure()
+        for column, label in enumerate(boomdyn_h5.ENERGY_COLUMNS):
+            ax.plot(steps["time"], steps["energy"][:, column], label=label,
+                    linestyle="--" if label == "total" else "-")
+        ax.set_xlabel(self.time_axis)
+        ax.set_ylabel("energy [J]")
+        ax.grid(True)
+        ax.legend(loc="best")
+        self.save(fig, "energy", "energy")
+
+    def modal_frequencies(self, modal):
+        if modal is None:
+            return self.skip("modal frequencies", "no /modal/frequencies_hz")
+        frequencies = modal["frequencies_hz"]
+        modes = np.arange(1, len(frequencies) + 1)
+        fig, (ax,) = self.figure()
+        bars = ax.bar(modes, frequencies)
+        ax.bar_label(bars, fmt="%.3g", fontsize="small")
+        ax.set_xticks(modes)
+        ax.set_xlabel("mode [-]")
+        ax.set_ylabel("frequency [Hz]")
+        ax.grid(True, axis="y")
+        when = "" if modal["state_time"] is None else f" at {self.time_name} {modal['state_time']:g}{self.time_unit}"
+        self.save(fig, "modal_frequencies", f"natural frequencies{when}")
+
+    def boom_shapes(self, layout, states):
+        beams = [b for b in layout.bodies if b.is_beam] if layout else []
+        if not beams or states is None:
+            return self.skip("boom shapes", "no beams in /layout or no /state/q")
+        count = min(SNAPSHOTS_SHOWN, len(states["time"]))
+        chosen = np.unique(np.linspace(0, len(states["time"]) - 1, count).round().astype(int))
+        colors = plt.cm.viridis(np.linspace(0, 1, len(chosen)))
+        fig, (ax,) = self.figure(height=5.0)
+        for color, index in zip(colors, chosen):
+            label = f"{self.time_name} = {states['time'][index]:g}{self.time_unit}"
+            for k, beam in enumerate(beams):
+                xy = beam.node_positions(states["q"][index])
+                ax.plot(xy[:, 0], xy[:, 1], marker="o", markersize=3, color=color, label=label if k == 0 else None)
+        ax.set_xlabel("x [m]")
+        ax.set_ylabel("y [m]")
+        ax.set_aspect("equal", adjustable="datalim")
+        ax.grid(True)
+        ax.legend(loc="best", fontsize="small")
+        self.save(fig, "boom_shape", "boom shape (beam nodes joined by straight lines)")
+
+
+def plot_run(run_path, outdir=None):
+    """Writes every plot the file has data for; returns the paths written."""
+    run_path = Path(run_path)
+    outdir = Path(outdir) if outdir else run_path.with_name(run_path.stem + "_plots")
+    with boomdyn_h5.open_run(run_path) as f:
+        plotter = Plotter(f, outdir)
+        steps = boomdyn_h5.load_steps(f)
+        sensors = boomdyn_h5.load_sensors(f)
+        layout = boomdyn_h5.load_layout(f)
+        states = boomdyn_h5.load_states(f)
+        plotter.sensor_positions(steps, sensors)
+        plotter.tip_height(steps, sensors, layout, states)
+        plotter.solver_effort(steps)
+        plotter.constraint_violation(steps)
+        plotter.energy(steps)
+        plotter.modal_frequencies(boomdyn_h5.load_modal(f))
+        plotter.boom_shapes(layout, states)
+    for path in plotter.written:
+        print(f"wrote {path}")
+    return plotter.written
+
+
+def main(argv=None):
+    parser = argparse.ArgumentParser(description="Plot a boomdyn results file (layout: docs/output.md).")
+    parser.add_argument("run", help="results file (.h5)")
+    parser.add_argument("-o", "--outdir", help="directory for the PNG files (default: RUN stem + '_plots' beside RUN)")
+    args = parser.parse_args(argv)
+    try:
+        written = plot_run(args.run, args.outdir)
+    except OSError as error:  # h5py reports unreadable files as OSError
+        sys.exit(f"plot_run.py: cannot read {args.run}: {error}")
+    if not written:
+        print(f"nothing to plot in {args.run}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

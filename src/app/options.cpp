@@ -1,0 +1,91 @@
+#include "options.hpp"
+
+#include <cstring>
+
+namespace boomdyn {
+
+PetscErrorCode readAppOptions(int argc, char **argv, AppOptions *opts)
+{
+  char buf[PETSC_MAX_PATH_LEN];
+  PetscBool set;
+  PetscFunctionBeginUser;
+  if (argc > 1 && argv[1][0] != '-') opts->scenePath = argv[1];
+  PetscCall(PetscOptionsGetString(nullptr, nullptr, "-scene", buf, sizeof buf, &set));
+  if (set) opts->scenePath = buf;
+  PetscCheck(!opts->scenePath.empty(), PETSC_COMM_WORLD, PETSC_ERR_USER_INPUT,
+             "usage: boomdyn SCENE.yaml [-o OUT.h5] [-boom_overwrite] [-boom_quiet] [PETSc options]; see README.md");
+  PetscCall(PetscOptionsGetString(nullptr, nullptr, "-o", buf, sizeof buf, &set));
+  if (set) opts->outputPath = buf;
+  else {
+    std::string stem = opts->scenePath;
+    const auto slash = stem.find_last_of('/');
+    if (slash != std::string::npos) stem = stem.substr(slash + 1);
+    const auto dot = stem.find_last_of('.');
+    if (dot != std::string::npos) stem = stem.substr(0, dot);
+    opts->outputPath = stem + ".h5";
+  }
+  PetscBool flag = PETSC_FALSE;
+  PetscCall(PetscOptionsGetBool(nullptr, "boom_", "-overwrite", &flag, nullptr));
+  opts->overwrite = flag;
+  flag = PETSC_FALSE;
+  PetscCall(PetscOptionsGetBool(nullptr, "boom_", "-quiet", &flag, nullptr));
+  opts->quiet = flag;
+  PetscCall(PetscOptionsGetReal(nullptr, "boom_", "-progress_interval", &opts->progressInterval, nullptr));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode applySceneOverrides(Scene *scene)
+{
+  PetscInt n;
+  PetscReal r;
+  PetscBool set;
+  PetscFunctionBeginUser;
+  // -boom_elements N: every ANCF body; -boom_elements_<body> N: one body.
+  PetscCall(PetscOptionsGetInt(nullptr, "boom_", "-elements", &n, &set));
+  for (BodySpec &b : scene->bodies) {
+    if (b.type != BodySpec::Type::AncfBeam) continue;
+    if (set) b.elements = static_cast<int>(n);
+    PetscBool one;
+    PetscInt m;
+    PetscCall(PetscOptionsGetInt(nullptr, "boom_", ("-elements_" + b.name).c_str(), &m, &one));
+    if (one) b.elements = static_cast<int>(m);
+    PetscCheck(b.elements >= 1 && b.elements <= 10000000, PETSC_COMM_WORLD, PETSC_ERR_USER_INPUT,
+               "-boom_elements: body '%s' needs between 1 and 1e7 elements (got %d)", b.name.c_str(), b.elements);
+  }
+  DynamicSpec &d = scene->dynamic;
+  PetscCall(PetscOptionsGetReal(nullptr, nullptr, "-ts_dt", &r, &set));
+  if (set) {
+    PetscCheck(r > 0, PETSC_COMM_WORLD, PETSC_ERR_USER_INPUT, "-ts_dt must be > 0 (got %g)", (double)r);
+    d.dt = r;
+    d.dt_min = std::min(d.dt_min, r);
+  }
+  PetscCall(PetscOptionsGetReal(nullptr, nullptr, "-ts_max_time", &r, &set));
+  if (set) {
+    PetscCheck(r > 0, PETSC_COMM_WORLD, PETSC_ERR_USER_INPUT, "-ts_max_time must be > 0 (got %g)", (double)r);
+    d.t_end = r;
+  }
+  PetscCall(PetscOptionsGetReal(nullptr, "boom_", "-rho_inf", &r, &set));
+  if (set) {
+    PetscCheck(r >= 0 && r <= 1, PETSC_COMM_WORLD, PETSC_ERR_USER_INPUT, "-boom_rho_inf must lie in [0, 1] (got %g)",
+               (double)r);
+    d.rho_inf = r;
+  }
+  PetscCall(PetscOptionsGetReal(nullptr, "boom_", "-state_interval", &r, &set));
+  if (set) {
+    PetscCheck(r >= 0, PETSC_COMM_WORLD, PETSC_ERR_USER_INPUT, "-boom_state_interval must be >= 0 (got %g)", (double)r);
+    scene->output.state_interval = r;
+  }
+  PetscCall(PetscOptionsGetInt(nullptr, "boom_", "-modal_count", &n, &set));
+  if (set) {
+    PetscCheck(n >= 0 && n <= 1000, PETSC_COMM_WORLD, PETSC_ERR_USER_INPUT, "-boom_modal_count must lie in [0, 1000]");
+    scene->modal.count = static_cast<int>(n);
+  }
+  PetscCall(PetscOptionsGetInt(nullptr, "boom_", "-load_steps", &n, &set));
+  if (set) {
+    PetscCheck(n >= 1, PETSC_COMM_WORLD, PETSC_ERR_USER_INPUT, "-boom_load_steps must be >= 1");
+    scene->statics.load_steps = static_cast<int>(n);
+  }
+  PetscFunctionReturn(0);
+}
+
+} // namespace boomdyn

@@ -1,0 +1,29 @@
+// Run-time options of the boomdyn program. The program's own options carry
+// the prefix -boom_ (plus -o for the output file); PETSc's own (-ts_dt,
+// -ts_max_time, -snes_*, -ksp_*, -log_view, ...) keep their usual meaning.
+#pragma once
+
+#include "boomdyn/scene.hpp"
+
+#include <petscsys.h>
+
+#include <string>
+
+namespace boomdyn {
+
+struct AppOptions {
+  std::string scenePath;
+  std::string outputPath;  // -o; default: scene file stem + ".h5"
+  bool overwrite = false;  // -boom_overwrite
+  bool quiet = false;      // -boom_quiet
+  double progressInterval = 2.0; // -boom_progress_interval (s of wall time)
+};
+
+// Scene path from argv[1] (or -scene PATH); the rest from the options database.
+PetscErrorCode readAppOptions(int argc, char **argv, AppOptions *opts);
+// Apply command-line overrides to the scene (mesh sizes, step, end time,
+// rho_inf, output interval, modal count) so that convergence studies need no
+// edited files. Invalid values are rejected like bad scene values.
+PetscErrorCode applySceneOverrides(Scene *scene);
+
+} // namespace boomdyn

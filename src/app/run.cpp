@@ -1,0 +1,198 @@
+#include "run.hpp"
+
+#include "progress.hpp"
+
+#include "boomdyn/assembler.hpp"
+#include "boomdyn/eigen_solver.hpp"
+#include "boomdyn/generalized_alpha.hpp"
+#include "boomdyn/model.hpp"
+#include "boomdyn/results_writer.hpp"
+#include "boomdyn/sensors.hpp"
+#include "boomdyn/static_solver.hpp"
+#include "boomdyn/time_stepper.hpp"
+#include "boomdyn/version.hpp"
+
+#include <slepcsys.h>
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+namespace boomdyn {
+
+namespace {
+
+std::string commandLine(int argc, char **argv)
+{
+  std::string s;
+  for (int i = 0; i < argc; ++i) s += (i ? " " : "") + std::string(argv[i]);
+  return s;
+}
+
+PetscErrorCode allOptions(std::string *out)
+{
+  char *text;
+  PetscFunctionBeginUser;
+  PetscCall(PetscOptionsGetAll(nullptr, &text));
+  *out = text;
+  PetscCall(PetscFree(text));
+  PetscFunctionReturn(0);
+}
+
+// Coordinates of the initial configuration in a vector with x's layout.
+PetscErrorCode setInitialCoordinates(const Model &model, Vec x)
+{
+  PetscInt lo, hi;
+  PetscScalar *a;
+  PetscFunctionBeginUser;
+  const std::vector<double> q0 = model.initialCoordinates();
+  PetscCall(VecSet(x, 0.0));
+  PetscCall(VecGetOwnershipRange(x, &lo, &hi));
+  PetscCall(VecGetArray(x, &a));
+  for (PetscInt i = lo; i < std::min<PetscInt>(hi, model.numCoordinates()); ++i) a[i - lo] = q0[i];
+  PetscCall(VecRestoreArray(x, &a));
+  PetscFunctionReturn(0);
+}
+
+// SLEPc is initialized only by runs that ask for modes.
+PetscErrorCode modalAnalysis(Assembler &assembler, ResultsWriter &out, double t, Vec q, Vec lambda, int count, bool quiet)
+{
+  PetscFunctionBeginUser;
+  PetscCall(SlepcInitialize(nullptr, nullptr, nullptr, nullptr));
+  ModalResult modes;
+  PetscCall(solveModes(assembler, t, q, lambda, count, &modes));
+  PetscCall(out.writeModes(t, modes));
+  if (!quiet) {
+    PetscCall(PetscPrintf(PETSC_COMM_WORLD, "modes at t = %g s:\n", t));
+    for (std::size_t k = 0; k < modes.frequencyHz.size(); ++k)
+      PetscCall(PetscPrintf(PETSC_COMM_WORLD, "  mode %2zu  f = %12.6f Hz  (relative residual %.1e)\n", k + 1,
+                            modes.frequencyHz[k], modes.residuals[k]));
+  }
+  PetscFunctionReturn(0);
+}
+
+} // namespace
+
+PetscErrorCode runScene(const Scene &scene, const AppOptions &opts, int argc, char **argv)
+{
+  PetscMPIInt size;
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_size(PETSC_COMM_WORLD, &size));
+  Model model(scene);
+  Assembler assembler(model);
+  PetscCall(assembler.setUp(PETSC_COMM_WORLD));
+  Vec x, zero;
+  PetscCall(assembler.createVector(&x));
+  PetscCall(assembler.createVector(&zero));
+  PetscCall(setInitialCoordinates(model, x));
+
+  RunInfo info;
+  info.commandLine = commandLine(argc, argv);
+  PetscCall(allOptions(&info.petscOptions));
+  info.version = BOOMDYN_VERSION;
+  info.ranks = size;
+  ResultsWriter out(model, PETSC_COMM_WORLD);
+  PetscCall(out.open(opts.outputPath, opts.overwrite, info, x));
+  SensorProbe sensors(model);
+  PetscCall(sensors.setUp(x));
+  std::vector<SensorReading> readings;
+
+  if (!opts.quiet)
+    PetscCall(PetscPrintf(PETSC_COMM_WORLD, "boomdyn %s: scene '%s' (%s), %" PetscInt_FMT " coordinates, %" PetscInt_FMT
+                          " multipliers, %d rank(s) -> %s\n",
+                          BOOMDYN_VERSION, scene.name.c_str(), scene.file.c_str(), model.numCoordinates(),
+                          model.numMultipliers(), size, opts.outputPath.c_str()));
+  Progress progress(scene.dynamic.t_end, opts.progressInterval, opts.quiet);
+  PetscCall(progress.start());
+  std::string status = "completed";
+  PetscInt steps = 0, rejected = 0;
+  double maxViolation = 0;
+
+  if (scene.analysis == Scene::Analysis::Dynamic) {
+    GeneralizedAlpha integrator(assembler, scene.dynamic.rho_inf);
+    PetscCall(integrator.setUp(scene.dynamic.max_newton));
+    PetscCall(integrator.initialize(0.0, x, zero));
+    EnergyParts energy;
+    PetscReal violation;
+    PetscCall(integrator.diagnostics(&energy, &violation));
+    PetscCall(sensors.read(integrator.positions(), integrator.velocities(), readings));
+    PetscCall(out.appendStep(0.0, 0.0, 0, violation, energy, readings));
+    PetscCall(out.appendState(0.0, integrator.positions(), integrator.velocities(), integrator.multipliers()));
+    maxViolation = violation;
+    double nextState = scene.output.state_interval;
+    auto onStep = [&](const StepInfo &s) -> PetscErrorCode {
+      PetscFunctionBeginUser;
+      PetscCall(integrator.diagnostics(&energy, &violation));
+      maxViolation = std::max(maxViolation, (double)violation);
+      PetscCall(sensors.read(integrator.positions(), integrator.velocities(), readings));
+      PetscCall(out.appendStep(s.t, s.h, s.iterations, violation, energy, readings));
+      const bool last = s.t >= scene.dynamic.t_end * (1 - 1e-12);
+      if ((scene.output.state_interval > 0 && s.t >= nextState - 1e-9 * s.h) || last) {
+        PetscCall(out.appendState(s.t, integrator.positions(), integrator.velocities(), integrator.multipliers()));
+        while (scene.output.state_interval > 0 && nextState <= s.t + 1e-9 * s.h) nextState += scene.output.state_interval;
+      }
+      PetscCall(progress.update(s.step, s.t, s.h, s.iterations, s.rejected));
+      PetscFunctionReturn(0);
+    };
+    RunSummary summary;
+    PetscCall(integrate(integrator, scene.dynamic, onStep, &summary));
+    steps = summary.steps;
+    rejected = summary.rejected;
+    if (!summary.completed) {
+      status = "failed: " + summary.failure;
+      PetscCall(out.appendState(integrator.time(), integrator.positions(), integrator.velocities(), integrator.multipliers()));
+    }
+    if (!opts.quiet)
+      PetscCall(PetscPrintf(PETSC_COMM_WORLD,
+                            "%s: %" PetscInt_FMT " steps, %" PetscInt_FMT " rejected, %.2f Newton iterations/step, max "
+                            "constraint violation %.2e, %.2f s\n",
+                            status.c_str(), steps, rejected, steps ? (double)summary.newtonIterations / steps : 0.0,
+                            maxViolation, progress.elapsed()));
+    if (summary.completed && scene.modal.count > 0) {
+      Vec q = scene.modal.at == "start" ? x : integrator.positions();
+      PetscCall(modalAnalysis(assembler, out, scene.modal.at == "start" ? 0.0 : integrator.time(), q,
+                              integrator.multipliers(), scene.modal.count, opts.quiet));
+    }
+  } else {
+    // Static and modal analyses: static equilibrium under the loads at statics.time.
+    StaticSolver statics(assembler);
+    PetscCall(statics.setUp());
+    PetscBool converged = PETSC_TRUE;
+    Vec lambda0;
+    PetscCall(assembler.createVector(&lambda0));
+    const bool modesAtStart = scene.modal.count > 0 && scene.modal.at == "start";
+    if (modesAtStart) PetscCall(modalAnalysis(assembler, out, scene.statics.time, x, lambda0, scene.modal.count, opts.quiet));
+    auto onLoadStep = [&](const LoadStepInfo &s) -> PetscErrorCode {
+      EnergyParts energy;
+      PetscReal violation;
+      AssemblyContext ctx;
+      PetscFunctionBeginUser;
+      ctx.t = scene.statics.time;
+      ctx.loadFactor = s.loadFactor;
+      PetscCall(assembler.setOffsets(nullptr, nullptr, nullptr));
+      PetscCall(assembler.diagnostics(ctx, x, &energy, &violation));
+      maxViolation = std::max(maxViolation, (double)violation);
+      PetscCall(sensors.read(x, zero, readings));
+      PetscCall(out.appendStep(s.loadFactor, 0.0, s.iterations, violation, energy, readings));
+      ++steps;
+      if (!opts.quiet)
+        PetscCall(PetscPrintf(PETSC_COMM_WORLD, "load factor %.4f: %" PetscInt_FMT " Newton iterations\n", s.loadFactor,
+                              s.iterations));
+      PetscFunctionReturn(0);
+    };
+    PetscCall(statics.solve(scene.statics.time, scene.statics.load_steps, x, onLoadStep, &converged));
+    PetscCall(out.appendState(scene.statics.time, x, zero, statics.multipliers()));
+    if (!converged) status = "failed: static solve did not converge";
+    if (converged && scene.modal.count > 0 && !modesAtStart)
+      PetscCall(modalAnalysis(assembler, out, scene.statics.time, x, statics.multipliers(), scene.modal.count, opts.quiet));
+    PetscCall(VecDestroy(&lambda0));
+  }
+  PetscCall(out.finish(status, steps, rejected, progress.elapsed(), maxViolation));
+  PetscCall(VecDestroy(&x));
+  PetscCall(VecDestroy(&zero));
+  PetscCheck(status == "completed", PETSC_COMM_WORLD, PETSC_ERR_NOT_CONVERGED, "run %s (results so far in %s)",
+             status.c_str(), opts.outputPath.c_str());
+  PetscFunctionReturn(0);
+}
+
+} // namespace boomdyn

@@ -1,0 +1,181 @@
+#include "boomdyn/results_writer.hpp"
+
+#include "boomdyn/log_events.hpp"
+
+#include <chrono>
+#include <ctime>
+
+namespace boomdyn {
+
+namespace {
+
+const char *analysisName(Scene::Analysis a)
+{
+  switch (a) {
+  case Scene::Analysis::Static: return "static";
+  case Scene::Analysis::Dynamic: return "dynamic";
+  case Scene::Analysis::Modal: return "modal";
+  }
+  return "unknown";
+}
+
+std::string utcNow()
+{
+  const std::time_t now = std::time(nullptr);
+  char buf[32];
+  std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%SZ", std::gmtime(&now));
+  return buf;
+}
+
+} // namespace
+
+ResultsWriter::~ResultsWriter()
+{
+  if (toZero_) (void)VecScatterDestroy(&toZero_);
+  if (gathered_) (void)VecDestroy(&gathered_);
+}
+
+PetscErrorCode ResultsWriter::open(const std::string &path, bool overwrite, const RunInfo &info, Vec layout)
+{
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_rank(comm_, &rank_));
+  path_ = path;
+  PetscCall(VecScatterCreateToZero(layout, &toZero_, &gathered_));
+  // Rank 0 creates the file; every rank learns whether that worked, so all stop together.
+  int ok = 1;
+  std::string error;
+  if (rank_ == 0) {
+    try {
+      file_ = std::make_unique<Hdf5File>(path, overwrite);
+      const Scene &sc = model_.scene();
+      file_->setAttribute("/", "boomdyn_version", info.version);
+      file_->setAttribute("/", "scene_name", sc.name);
+      file_->setAttribute("/", "scene_file", sc.file);
+      file_->setAttribute("/", "analysis", std::string(analysisName(sc.analysis)));
+      file_->setAttribute("/", "command_line", info.commandLine);
+      file_->setAttribute("/", "petsc_options", info.petscOptions);
+      file_->setAttribute("/", "created_utc", utcNow());
+      file_->setAttribute("/", "mpi_ranks", static_cast<long long>(info.ranks));
+      file_->writeString("/scene/text", sc.text);
+      file_->setAttribute("/layout", "nq", static_cast<long long>(model_.numCoordinates()));
+      file_->setAttribute("/layout", "nlambda", static_cast<long long>(model_.numMultipliers()));
+      std::vector<std::string> names, cnames;
+      std::vector<int> first, count, cfirst, crows;
+      for (const auto &b : model_.bodies()) {
+        names.push_back(b->name());
+        first.push_back(static_cast<int>(b->firstCoordinate()));
+        count.push_back(static_cast<int>(b->numCoordinates()));
+      }
+      for (const ConstraintItem *c : model_.constraints()) {
+        cnames.push_back(c->name());
+        cfirst.push_back(static_cast<int>(c->firstRow() - model_.numCoordinates()));
+        crows.push_back(c->constraint().numRows());
+      }
+      file_->writeStrings("/layout/body_names", names);
+      file_->writeArray("/layout/body_first_coordinate", first, {first.size()});
+      file_->writeArray("/layout/body_num_coordinates", count, {count.size()});
+      if (!cnames.empty()) {
+        file_->writeStrings("/layout/constraint_names", cnames);
+        file_->writeArray("/layout/constraint_first_row", cfirst, {cfirst.size()});
+        file_->writeArray("/layout/constraint_num_rows", crows, {crows.size()});
+      }
+      file_->flush();
+    } catch (const std::exception &e) {
+      ok = 0;
+      error = e.what();
+      file_.reset();
+    }
+  }
+  PetscCallMPI(MPI_Bcast(&ok, 1, MPI_INT, 0, comm_));
+  PetscCheck(ok, comm_, PETSC_ERR_FILE_OPEN, "results file: %s", error.c_str());
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ResultsWriter::appendStep(double t, double dt, PetscInt iterations, double violation,
+                                         const EnergyParts &e, const std::vector<SensorReading> &sensors)
+{
+  PetscFunctionBeginUser;
+  if (rank_ != 0 || !file_) PetscFunctionReturn(0);
+  PetscCall(PetscLogEventBegin(logEvents().output, 0, 0, 0, 0));
+  file_->appendScalar("/steps/time", t);
+  file_->appendScalar("/steps/dt", dt);
+  file_->appendScalarInt("/steps/newton_iterations", static_cast<int>(iterations));
+  file_->appendScalar("/steps/constraint_violation", violation);
+  const double energy[4] = {e.kinetic, e.strain, e.potential, e.kinetic + e.strain + e.potential};
+  file_->appendRow("/steps/energy", energy, 4);
+  for (std::size_t i = 0; i < sensors.size(); ++i) {
+    const std::string base = "/sensors/" + model_.sensors()[i].name;
+    file_->appendRow(base + "/position", sensors[i].position.data(), 2);
+    file_->appendRow(base + "/velocity", sensors[i].velocity.data(), 2);
+  }
+  PetscCall(PetscLogEventEnd(logEvents().output, 0, 0, 0, 0));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ResultsWriter::gather(Vec v, std::vector<double> &out)
+{
+  PetscFunctionBeginUser;
+  PetscCall(VecScatterBegin(toZero_, v, gathered_, INSERT_VALUES, SCATTER_FORWARD));
+  PetscCall(VecScatterEnd(toZero_, v, gathered_, INSERT_VALUES, SCATTER_FORWARD));
+  if (rank_ == 0) {
+    const PetscScalar *g;
+    PetscInt n;
+    PetscCall(VecGetLocalSize(gathered_, &n));
+    PetscCall(VecGetArrayRead(gathered_, &g));
+    out.assign(g, g + n);
+    PetscCall(VecRestoreArrayRead(gathered_, &g));
+  }
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ResultsWriter::appendState(double t, Vec q, Vec v, Vec lambda)
+{
+  std::vector<double> qa, va, la;
+  PetscFunctionBeginUser;
+  PetscCall(PetscLogEventBegin(logEvents().output, 0, 0, 0, 0));
+  PetscCall(gather(q, qa));
+  PetscCall(gather(v, va));
+  PetscCall(gather(lambda, la));
+  if (rank_ == 0 && file_) {
+    const std::size_t nq = model_.numCoordinates(), nl = model_.numMultipliers();
+    file_->appendScalar("/state/time", t);
+    file_->appendRow("/state/q", qa.data(), nq);
+    file_->appendRow("/state/v", va.data(), nq);
+    if (nl > 0) file_->appendRow("/state/lambda", la.data() + nq, nl);
+    file_->flush();
+  }
+  PetscCall(PetscLogEventEnd(logEvents().output, 0, 0, 0, 0));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ResultsWriter::writeModes(double t, const ModalResult &modes)
+{
+  PetscFunctionBeginUser;
+  if (rank_ != 0 || !file_) PetscFunctionReturn(0);
+  const std::size_t k = modes.frequencyHz.size(), nq = model_.numCoordinates();
+  file_->writeArray("/modal/frequencies_hz", modes.frequencyHz, {k});
+  file_->writeArray("/modal/omega2", modes.omega2, {k});
+  file_->writeArray("/modal/relative_residual", modes.residuals, {k});
+  std::vector<double> shapes;
+  for (const auto &s : modes.shapes) shapes.insert(shapes.end(), s.begin(), s.end());
+  file_->writeArray("/modal/shapes", shapes, {k, nq});
+  file_->setAttribute("/modal", "state_time", t);
+  file_->flush();
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ResultsWriter::finish(const std::string &status, PetscInt steps, PetscInt rejected, double wallTime,
+                                     double maxViolation)
+{
+  PetscFunctionBeginUser;
+  if (rank_ != 0 || !file_) PetscFunctionReturn(0);
+  file_->setAttribute("/summary", "status", status);
+  file_->setAttribute("/summary", "steps", static_cast<long long>(steps));
+  file_->setAttribute("/summary", "rejected_steps", static_cast<long long>(rejected));
+  file_->setAttribute("/summary", "wall_time_s", wallTime);
+  file_->setAttribute("/summary", "max_constraint_violation", maxViolation);
+  file_->close();
+  PetscFunctionReturn(0);
+}
+
+} // namespace boomdyn

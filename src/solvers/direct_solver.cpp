@@ -1,0 +1,27 @@
+#include "boomdyn/direct_solver.hpp"
+
+namespace boomdyn {
+
+PetscErrorCode useDirectSolver(KSP ksp)
+{
+  PC pc;
+  const char *prefix;
+  PetscBool set;
+  PetscFunctionBeginUser;
+  PetscCall(KSPSetType(ksp, KSPPREONLY));
+  PetscCall(KSPGetPC(ksp, &pc));
+  PetscCall(PCSetType(pc, PCLU));
+  PetscCall(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS));
+  // MUMPS reads ICNTL(14) from the options database under the KSP's prefix
+  // when the factor is created; give a default only if the user has none.
+  PetscCall(KSPGetOptionsPrefix(ksp, &prefix));
+  PetscCall(PetscOptionsHasName(nullptr, prefix, "-mat_mumps_icntl_14", &set));
+  if (!set) {
+    char name[256];
+    PetscCall(PetscSNPrintf(name, sizeof name, "-%smat_mumps_icntl_14", prefix ? prefix : ""));
+    PetscCall(PetscOptionsSetValue(nullptr, name, "200"));
+  }
+  PetscFunctionReturn(0);
+}
+
+} // namespace boomdyn

@@ -1,0 +1,56 @@
+#include "boomdyn/time_stepper.hpp"
+
+#include <algorithm>
+#include <sstream>
+
+namespace boomdyn {
+
+PetscErrorCode integrate(GeneralizedAlpha &integrator, const DynamicSpec &spec,
+                         const std::function<PetscErrorCode(const StepInfo &)> &onStep, RunSummary *summary)
+{
+  PetscFunctionBeginUser;
+  *summary = RunSummary{};
+  double h = spec.dt;
+  int successesSinceCut = 0;
+  StepInfo info;
+  // Stop within a hair of t_end rather than take a sliver of a step.
+  const double tolerance = 1e-9 * spec.dt;
+  while (integrator.time() < spec.t_end - tolerance) {
+    const double attempt = std::min(h, spec.t_end - integrator.time());
+    StepResult r;
+    PetscCall(integrator.step(attempt, &r));
+    if (!r.converged) {
+      ++summary->rejected;
+      h = 0.5 * attempt;
+      successesSinceCut = 0;
+      PetscCall(PetscInfo(nullptr, "step at t = %g with h = %g rejected (%s); retrying with h = %g\n",
+                          integrator.time(), attempt, SNESConvergedReasons[r.reason], h));
+      if (h < spec.dt_min) {
+        std::ostringstream os;
+        os << "Newton failed at t = " << integrator.time() << " s (" << SNESConvergedReasons[r.reason]
+           << ") and the step would fall below dt_min = " << spec.dt_min << " s";
+        summary->failure = os.str();
+        summary->steps = info.step;
+        PetscFunctionReturn(0);
+      }
+      continue;
+    }
+    ++info.step;
+    info.t = integrator.time();
+    info.h = attempt;
+    info.iterations = r.iterations;
+    info.rejected = summary->rejected;
+    summary->newtonIterations += r.iterations;
+    if (onStep) PetscCall(onStep(info));
+    // Grow back towards the scene's dt after a few successes at a cut step.
+    if (h < spec.dt && ++successesSinceCut >= 4) {
+      h = std::min(spec.dt, 2.0 * h);
+      successesSinceCut = 0;
+    }
+  }
+  summary->completed = true;
+  summary->steps = info.step;
+  PetscFunctionReturn(0);
+}
+
+} // namespace boomdyn
