@@ -23,6 +23,7 @@ except ImportError as error:
              "On Debian: apt-get install python3-h5py python3-matplotlib, and run it with /usr/bin/python3.")
 
 SNAPSHOTS_SHOWN = 5  # boom shapes drawn, spread over the run
+MIN_SHAPE_ASPECT = 0.05  # flatter boom-shape plots are stretched, not drawn to scale
 
 
 def tip_sensor(sensors):
@@ -32,7 +33,6 @@ def tip_sensor(sensors):
 
 class Plotter:
     def __init__(self, f, outdir):
-        self.f = f
         self.outdir = Path(outdir)
         self.scene = boomdyn_h5.scene_name(f)
         self.static = boomdyn_h5.is_static(f)
@@ -172,10 +172,16 @@ class Plotter:
                 ax.plot(xy[:, 0], xy[:, 1], marker="o", markersize=3, color=color, label=label if k == 0 else None)
         ax.set_xlabel("x [m]")
         ax.set_ylabel("y [m]")
-        ax.set_aspect("equal", adjustable="datalim")
+        # True to scale unless that would flatten small deflections to a line.
+        nodes = np.concatenate([b.node_positions(states["q"][chosen]).reshape(-1, 2) for b in beams])
+        span_x, span_y = np.ptp(nodes, axis=0)
+        to_scale = min(span_x, span_y) >= MIN_SHAPE_ASPECT * max(span_x, span_y)
+        if to_scale:
+            ax.set_aspect("equal", adjustable="datalim")
         ax.grid(True)
         ax.legend(loc="best", fontsize="small")
-        self.save(fig, "boom_shape", "boom shape (beam nodes joined by straight lines)")
+        scale = "" if to_scale else ", axes not to scale"
+        self.save(fig, "boom_shape", f"boom shape (beam nodes joined by straight lines{scale})")
 
 
 def plot_run(run_path, outdir=None):

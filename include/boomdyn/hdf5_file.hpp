@@ -72,7 +72,9 @@ public:
   void appendScalarInt(const std::string &datasetPath, int value);
 
   // Writes everything buffered (data and metadata) to disk: after it returns
-  // the file on disk is a complete, readable HDF5 file.
+  // the file on disk is a complete, readable HDF5 file. Flush regularly:
+  // HDF5 may also write metadata on its own between flushes, so a crash long
+  // after the last flush can (rarely) leave a file HDF5 cannot open.
   void flush();
   // Closes the file; idempotent. Any later write throws.
   void close();

@@ -170,8 +170,9 @@ public:
     if (field.node.IsNull())
       return;
     for (auto it = field.node.begin(); it != field.node.end(); ++it) {
-      const YAML::Node &key = it->first;
-      const YAML::Node &value = it->second;
+      // Copies, not references: the iterator hands out a temporary pair.
+      const YAML::Node key = it->first;
+      const YAML::Node value = it->second;
       if (!key.IsScalar())
         report.fail(key.Mark(), field.path, "keys must be plain names, got " + describeNode(key) + " as a key");
       const std::string name = key.Scalar();

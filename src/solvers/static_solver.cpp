@@ -37,8 +37,9 @@ PetscErrorCode StaticSolver::solve(double t, int loadSteps, Vec x,
   newton_.ctx.sigma = sigma_;
   PetscCall(assembler_.setOffsets(nullptr, nullptr, nullptr));
 
-  double done = 0.0, increment = 1.0 / loadSteps;
-  const double minIncrement = increment / 1024.0;
+  const double nominal = 1.0 / loadSteps, minIncrement = nominal / 1024.0;
+  double done = 0.0, increment = nominal;
+  int successes = 0;
   *converged = PETSC_TRUE;
   while (done < 1.0 - 1e-14) {
     const double target = std::min(1.0, done + increment);
@@ -50,8 +51,11 @@ PetscErrorCode StaticSolver::solve(double t, int loadSteps, Vec x,
     if (reason > 0) {
       done = target;
       if (onStep) PetscCall(onStep({done, its}));
+      // After a cut, grow back towards the nominal increment.
+      if (increment < nominal && ++successes >= 2) increment = std::min(nominal, 2.0 * increment), successes = 0;
       continue;
     }
+    successes = 0;
     PetscCall(VecCopy(backup_, x));
     increment *= 0.5;
     PetscCall(PetscInfo(nullptr, "load increment to %g failed (%s); halving to %g\n", (double)target,
