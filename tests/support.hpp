@@ -37,12 +37,12 @@ struct StaticOutcome {
   double violation = 0;
 };
 
-inline StaticOutcome runStatic(const Scene &scene)
+inline StaticOutcome runStatic(const Scene &scene, MPI_Comm comm = PETSC_COMM_WORLD)
 {
   StaticOutcome out;
   Model model(scene);
   Assembler assembler(model);
-  check(assembler.setUp(PETSC_COMM_WORLD));
+  check(assembler.setUp(comm));
   Vec x, zero;
   check(assembler.createVector(&x));
   check(assembler.createVector(&zero));
@@ -72,12 +72,12 @@ struct DynamicHistory {
   std::vector<double> finalState; // q and v of the last step, gathered on every rank
 };
 
-inline DynamicHistory runDynamic(const Scene &scene)
+inline DynamicHistory runDynamic(const Scene &scene, MPI_Comm comm = PETSC_COMM_WORLD)
 {
   DynamicHistory h;
   Model model(scene);
   Assembler assembler(model);
-  check(assembler.setUp(PETSC_COMM_WORLD));
+  check(assembler.setUp(comm));
   Vec x, zero;
   check(assembler.createVector(&x));
   check(assembler.createVector(&zero));

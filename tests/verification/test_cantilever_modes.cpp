@@ -99,7 +99,7 @@ TEST(CantileverModes, FirstThreeMatchEulerBernoulli)
   for (int k = 0; k < 3; ++k) {
     const double exact = bl[k] * bl[k] / (L * L) * std::sqrt(EI / rhoA) / (2 * M_PI);
     const double rel = std::abs(f[k] - exact) / exact;
-    std::printf("  cantilever mode %d: model %.6f Hz, Euler-Bernoulli %.6f Hz, relative error %.2e\n", k + 1, f[k], exact, rel);
+    PetscPrintf(PETSC_COMM_WORLD, "  cantilever mode %d: model %.6f Hz, Euler-Bernoulli %.6f Hz, relative error %.2e\n", k + 1, f[k], exact, rel);
     EXPECT_LT(rel, 1e-3) << "mode " << k + 1;
   }
 }
@@ -117,7 +117,7 @@ TEST(CantileverModes, TipMassMatchesFrequencyEquation)
   for (int k = 0; k < 3; ++k) {
     const double exact = bl[k] * bl[k] / (L * L) * std::sqrt(EI / rhoA) / (2 * M_PI);
     const double rel = std::abs(f[k] - exact) / exact;
-    std::printf("  tip mass %.0f kg, mode %d: model %.6f Hz, theory %.6f Hz, relative error %.2e\n", m, k + 1, f[k], exact, rel);
+    PetscPrintf(PETSC_COMM_WORLD, "  tip mass %.0f kg, mode %d: model %.6f Hz, theory %.6f Hz, relative error %.2e\n", m, k + 1, f[k], exact, rel);
     EXPECT_LT(rel, 1e-3) << "mode " << k + 1;
   }
 }

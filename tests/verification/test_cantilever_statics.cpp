@@ -67,7 +67,7 @@ TEST(CantileverStatics, SmallTipLoadMatchesBeamTheory)
   MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
   if (rank) return;
   const double deflection = -out.sensors[0].position.y();
-  std::printf("  tip deflection %.10e m, P L^3/(3 EI) = %.10e m, relative error %.2e\n", deflection, exact,
+  PetscPrintf(PETSC_COMM_WORLD, "  tip deflection %.10e m, P L^3/(3 EI) = %.10e m, relative error %.2e\n", deflection, exact,
               std::abs(deflection - exact) / exact);
   EXPECT_LT(std::abs(deflection - exact) / exact, 1e-4);
   EXPECT_LT(out.violation, 1e-12);
@@ -90,7 +90,7 @@ TEST(CantileverStatics, LargeDeflectionMatchesElastica)
       if (rank) continue;
       const double v = -out.sensors[0].position.y() / L, u = 1.0 - out.sensors[0].position.x() / L;
       const double err = std::hypot(v - ref.v, u - ref.u) / std::hypot(ref.v, ref.u);
-      std::printf("  PL^2/EI = %4.1f, %2d elements: v/L = %.6f (elastica %.6f), u/L = %.6f (elastica %.6f), error %.2e%s\n",
+      PetscPrintf(PETSC_COMM_WORLD, "  PL^2/EI = %4.1f, %2d elements: v/L = %.6f (elastica %.6f), u/L = %.6f (elastica %.6f), error %.2e%s\n",
                   k, n, v, ref.v, u, ref.u, err,
                   previous > 0 ? (" rate " + std::to_string(std::log2(previous / err))).c_str() : "");
       if (n == 16) {
