@@ -10,6 +10,7 @@
 
 #include <petscvec.h>
 
+#include <chrono>
 #include <memory>
 #include <string>
 
@@ -41,6 +42,9 @@ public:
 
 private:
   PetscErrorCode gather(Vec v, std::vector<double> &out);
+  void appendStepRow(double t, double dt, PetscInt iterations, double violation, const EnergyParts &e,
+                     const std::vector<SensorReading> &sensors);
+  void writeModeArrays(double t, const ModalResult &modes);
 
   const Model &model_;
   MPI_Comm comm_;
@@ -49,6 +53,7 @@ private:
   std::unique_ptr<Hdf5File> file_;
   VecScatter toZero_ = nullptr;
   Vec gathered_ = nullptr;
+  std::chrono::steady_clock::time_point lastFlush_ = std::chrono::steady_clock::now();
 };
 
 } // namespace boomdyn

@@ -1,8 +1,18 @@
 #include "options.hpp"
 
 #include <cstring>
+#include <stdexcept>
+#include <string>
 
 namespace boomdyn {
+
+namespace {
+// Bad options are user errors: a one-line message from main, not a PETSc traceback.
+void require(bool condition, const std::string &message)
+{
+  if (!condition) throw std::invalid_argument(message);
+}
+} // namespace
 
 PetscErrorCode readAppOptions(int argc, char **argv, AppOptions *opts)
 {
@@ -12,8 +22,8 @@ PetscErrorCode readAppOptions(int argc, char **argv, AppOptions *opts)
   if (argc > 1 && argv[1][0] != '-') opts->scenePath = argv[1];
   PetscCall(PetscOptionsGetString(nullptr, nullptr, "-scene", buf, sizeof buf, &set));
   if (set) opts->scenePath = buf;
-  PetscCheck(!opts->scenePath.empty(), PETSC_COMM_WORLD, PETSC_ERR_USER_INPUT,
-             "usage: boomdyn SCENE.yaml [-o OUT.h5] [-boom_overwrite] [-boom_quiet] [PETSc options]; see README.md");
+  require(!opts->scenePath.empty(),
+          "usage: boomdyn SCENE.yaml [-o OUT.h5] [-boom_overwrite] [-boom_quiet] [PETSc options]; see README.md");
   PetscCall(PetscOptionsGetString(nullptr, nullptr, "-o", buf, sizeof buf, &set));
   if (set) opts->outputPath = buf;
   else {
@@ -49,40 +59,39 @@ PetscErrorCode applySceneOverrides(Scene *scene)
     PetscInt m;
     PetscCall(PetscOptionsGetInt(nullptr, "boom_", ("-elements_" + b.name).c_str(), &m, &one));
     if (one) b.elements = static_cast<int>(m);
-    PetscCheck(b.elements >= 1 && b.elements <= 10000000, PETSC_COMM_WORLD, PETSC_ERR_USER_INPUT,
-               "-boom_elements: body '%s' needs between 1 and 1e7 elements (got %d)", b.name.c_str(), b.elements);
+    require(b.elements >= 1 && b.elements <= 10000000,
+            "-boom_elements: body '" + b.name + "' needs between 1 and 1e7 elements (got " + std::to_string(b.elements) + ")");
   }
   DynamicSpec &d = scene->dynamic;
   PetscCall(PetscOptionsGetReal(nullptr, nullptr, "-ts_dt", &r, &set));
   if (set) {
-    PetscCheck(r > 0, PETSC_COMM_WORLD, PETSC_ERR_USER_INPUT, "-ts_dt must be > 0 (got %g)", (double)r);
+    require(r > 0, "-ts_dt must be > 0 (got " + std::to_string(r) + ")");
     d.dt = r;
     d.dt_min = std::min(d.dt_min, r);
   }
   PetscCall(PetscOptionsGetReal(nullptr, nullptr, "-ts_max_time", &r, &set));
   if (set) {
-    PetscCheck(r > 0, PETSC_COMM_WORLD, PETSC_ERR_USER_INPUT, "-ts_max_time must be > 0 (got %g)", (double)r);
+    require(r > 0, "-ts_max_time must be > 0 (got " + std::to_string(r) + ")");
     d.t_end = r;
   }
   PetscCall(PetscOptionsGetReal(nullptr, "boom_", "-rho_inf", &r, &set));
   if (set) {
-    PetscCheck(r >= 0 && r <= 1, PETSC_COMM_WORLD, PETSC_ERR_USER_INPUT, "-boom_rho_inf must lie in [0, 1] (got %g)",
-               (double)r);
+    require(r >= 0 && r <= 1, "-boom_rho_inf must lie in [0, 1] (got " + std::to_string(r) + ")");
     d.rho_inf = r;
   }
   PetscCall(PetscOptionsGetReal(nullptr, "boom_", "-state_interval", &r, &set));
   if (set) {
-    PetscCheck(r >= 0, PETSC_COMM_WORLD, PETSC_ERR_USER_INPUT, "-boom_state_interval must be >= 0 (got %g)", (double)r);
+    require(r >= 0, "-boom_state_interval must be >= 0 (got " + std::to_string(r) + ")");
     scene->output.state_interval = r;
   }
   PetscCall(PetscOptionsGetInt(nullptr, "boom_", "-modal_count", &n, &set));
   if (set) {
-    PetscCheck(n >= 0 && n <= 1000, PETSC_COMM_WORLD, PETSC_ERR_USER_INPUT, "-boom_modal_count must lie in [0, 1000]");
+    require(n >= 0 && n <= 1000, "-boom_modal_count must lie in [0, 1000]");
     scene->modal.count = static_cast<int>(n);
   }
   PetscCall(PetscOptionsGetInt(nullptr, "boom_", "-load_steps", &n, &set));
   if (set) {
-    PetscCheck(n >= 1, PETSC_COMM_WORLD, PETSC_ERR_USER_INPUT, "-boom_load_steps must be >= 1");
+    require(n >= 1, "-boom_load_steps must be >= 1");
     scene->statics.load_steps = static_cast<int>(n);
   }
   PetscFunctionReturn(0);

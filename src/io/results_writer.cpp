@@ -4,6 +4,7 @@
 
 #include <chrono>
 #include <ctime>
+#include <stdexcept>
 
 namespace boomdyn {
 
@@ -87,7 +88,35 @@ PetscErrorCode ResultsWriter::open(const std::string &path, bool overwrite, cons
     }
   }
   PetscCallMPI(MPI_Bcast(&ok, 1, MPI_INT, 0, comm_));
-  PetscCheck(ok, comm_, PETSC_ERR_FILE_OPEN, "results file: %s", error.c_str());
+  if (!ok) {
+    // A user error (existing file, unwritable folder): every rank throws the same message.
+    char message[512] = "";
+    if (rank_ == 0) PetscCall(PetscStrncpy(message, error.c_str(), sizeof message));
+    PetscCallMPI(MPI_Bcast(message, sizeof message, MPI_CHAR, 0, comm_));
+    throw std::runtime_error(std::string("results file: ") + message);
+  }
+  PetscFunctionReturn(0);
+}
+
+// Runs a rank-0 file operation; a failure there (disk full, ...) becomes a
+// PETSc error on every rank instead of an exception on one and a hang on the rest.
+template <class F>
+static PetscErrorCode onRankZero(MPI_Comm comm, int rank, F &&op)
+{
+  int ok = 1;
+  char message[512] = "";
+  PetscFunctionBeginUser;
+  if (rank == 0) {
+    try {
+      op();
+    } catch (const std::exception &e) {
+      ok = 0;
+      PetscCall(PetscStrncpy(message, e.what(), sizeof message));
+    }
+  }
+  PetscCallMPI(MPI_Bcast(&ok, 1, MPI_INT, 0, comm));
+  if (!ok) PetscCallMPI(MPI_Bcast(message, sizeof message, MPI_CHAR, 0, comm));
+  PetscCheck(ok, comm, PETSC_ERR_FILE_WRITE, "writing results: %s", message);
   PetscFunctionReturn(0);
 }
 
@@ -95,8 +124,15 @@ PetscErrorCode ResultsWriter::appendStep(double t, double dt, PetscInt iteration
                                          const EnergyParts &e, const std::vector<SensorReading> &sensors)
 {
   PetscFunctionBeginUser;
-  if (rank_ != 0 || !file_) PetscFunctionReturn(0);
   PetscCall(PetscLogEventBegin(logEvents().output, 0, 0, 0, 0));
+  PetscCall(onRankZero(comm_, rank_, [&] { appendStepRow(t, dt, iterations, violation, e, sensors); }));
+  PetscCall(PetscLogEventEnd(logEvents().output, 0, 0, 0, 0));
+  PetscFunctionReturn(0);
+}
+
+void ResultsWriter::appendStepRow(double t, double dt, PetscInt iterations, double violation, const EnergyParts &e,
+                                  const std::vector<SensorReading> &sensors)
+{
   file_->appendScalar("/steps/time", t);
   file_->appendScalar("/steps/dt", dt);
   file_->appendScalarInt("/steps/newton_iterations", static_cast<int>(iterations));
@@ -108,8 +144,12 @@ PetscErrorCode ResultsWriter::appendStep(double t, double dt, PetscInt iteration
     file_->appendRow(base + "/position", sensors[i].position.data(), 2);
     file_->appendRow(base + "/velocity", sensors[i].velocity.data(), 2);
   }
-  PetscCall(PetscLogEventEnd(logEvents().output, 0, 0, 0, 0));
-  PetscFunctionReturn(0);
+  // Flush every couple of seconds so that a crash keeps the rows written so far.
+  const auto now = std::chrono::steady_clock::now();
+  if (now - lastFlush_ > std::chrono::seconds(2)) {
+    file_->flush();
+    lastFlush_ = now;
+  }
 }
 
 PetscErrorCode ResultsWriter::gather(Vec v, std::vector<double> &out)
@@ -136,14 +176,14 @@ PetscErrorCode ResultsWriter::appendState(double t, Vec q, Vec v, Vec lambda)
   PetscCall(gather(q, qa));
   PetscCall(gather(v, va));
   PetscCall(gather(lambda, la));
-  if (rank_ == 0 && file_) {
+  PetscCall(onRankZero(comm_, rank_, [&] {
     const std::size_t nq = model_.numCoordinates(), nl = model_.numMultipliers();
     file_->appendScalar("/state/time", t);
     file_->appendRow("/state/q", qa.data(), nq);
     file_->appendRow("/state/v", va.data(), nq);
     if (nl > 0) file_->appendRow("/state/lambda", la.data() + nq, nl);
     file_->flush();
-  }
+  }));
   PetscCall(PetscLogEventEnd(logEvents().output, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }
@@ -151,7 +191,12 @@ PetscErrorCode ResultsWriter::appendState(double t, Vec q, Vec v, Vec lambda)
 PetscErrorCode ResultsWriter::writeModes(double t, const ModalResult &modes)
 {
   PetscFunctionBeginUser;
-  if (rank_ != 0 || !file_) PetscFunctionReturn(0);
+  PetscCall(onRankZero(comm_, rank_, [&] { writeModeArrays(t, modes); }));
+  PetscFunctionReturn(0);
+}
+
+void ResultsWriter::writeModeArrays(double t, const ModalResult &modes)
+{
   const std::size_t k = modes.frequencyHz.size(), nq = model_.numCoordinates();
   file_->writeArray("/modal/frequencies_hz", modes.frequencyHz, {k});
   file_->writeArray("/modal/omega2", modes.omega2, {k});
@@ -161,20 +206,20 @@ PetscErrorCode ResultsWriter::writeModes(double t, const ModalResult &modes)
   file_->writeArray("/modal/shapes", shapes, {k, nq});
   file_->setAttribute("/modal", "state_time", t);
   file_->flush();
-  PetscFunctionReturn(0);
 }
 
 PetscErrorCode ResultsWriter::finish(const std::string &status, PetscInt steps, PetscInt rejected, double wallTime,
                                      double maxViolation)
 {
   PetscFunctionBeginUser;
-  if (rank_ != 0 || !file_) PetscFunctionReturn(0);
-  file_->setAttribute("/summary", "status", status);
-  file_->setAttribute("/summary", "steps", static_cast<long long>(steps));
-  file_->setAttribute("/summary", "rejected_steps", static_cast<long long>(rejected));
-  file_->setAttribute("/summary", "wall_time_s", wallTime);
-  file_->setAttribute("/summary", "max_constraint_violation", maxViolation);
-  file_->close();
+  PetscCall(onRankZero(comm_, rank_, [&] {
+    file_->setAttribute("/summary", "status", status);
+    file_->setAttribute("/summary", "steps", static_cast<long long>(steps));
+    file_->setAttribute("/summary", "rejected_steps", static_cast<long long>(rejected));
+    file_->setAttribute("/summary", "wall_time_s", wallTime);
+    file_->setAttribute("/summary", "max_constraint_violation", maxViolation);
+    file_->close();
+  }));
   PetscFunctionReturn(0);
 }
 

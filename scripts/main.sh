@@ -1,0 +1,12 @@
+#!/usr/bin/env bash
+# The main job: install what is missing, build, run the main scene and write its plots.
+#   scripts/main.sh [extra boomdyn/PETSc options]
+set -euo pipefail
+cd "$(dirname "$0")/.."
+scripts/install-deps.sh
+scripts/build.sh
+scene=inputs/cantilever_dynamic.yaml
+mkdir -p out
+./build/boomdyn "$scene" -o out/main.h5 -boom_overwrite "$@"
+/usr/bin/python3 postprocess/plot_run.py out/main.h5 -o out/main_plots
+echo "main: results in out/main.h5, plots in out/main_plots/"
