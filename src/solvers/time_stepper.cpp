@@ -23,8 +23,10 @@ PetscErrorCode integrate(GeneralizedAlpha &integrator, const DynamicSpec &spec,
       ++summary->rejected;
       h = 0.5 * attempt;
       successesSinceCut = 0;
-      PetscCall(PetscInfo(nullptr, "step at t = %g with h = %g rejected (%s); retrying with h = %g\n",
-                          integrator.time(), attempt, SNESConvergedReasons[r.reason], h));
+      // Reported even in quiet runs: a rejected step is something the user should know about.
+      PetscCall(PetscPrintf(PETSC_COMM_WORLD, "warning: step at t = %g s with h = %g s rejected (%s after %" PetscInt_FMT
+                            " Newton iterations); retrying with h = %g s\n",
+                            integrator.time(), attempt, SNESConvergedReasons[r.reason], r.iterations, h));
       if (h < spec.dt_min) {
         std::ostringstream os;
         os << "Newton failed at t = " << integrator.time() << " s (" << SNESConvergedReasons[r.reason]
