@@ -19,18 +19,6 @@ namespace boomdyn::testing {
 
 inline void check(PetscErrorCode ierr) { ASSERT_EQ(ierr, 0) << "PETSc error " << ierr; }
 
-inline void setInitial(const Model &model, Vec x)
-{
-  const std::vector<double> q0 = model.initialCoordinates();
-  PetscInt lo, hi;
-  PetscScalar *a;
-  VecSet(x, 0.0);
-  VecGetOwnershipRange(x, &lo, &hi);
-  VecGetArray(x, &a);
-  for (PetscInt i = lo; i < std::min<PetscInt>(hi, model.numCoordinates()); ++i) a[i - lo] = q0[i];
-  VecRestoreArray(x, &a);
-}
-
 struct StaticOutcome {
   std::vector<SensorReading> sensors; // on rank 0
   bool converged = false;
@@ -46,7 +34,7 @@ inline StaticOutcome runStatic(const Scene &scene, MPI_Comm comm = PETSC_COMM_WO
   Vec x, zero;
   check(assembler.createVector(&x));
   check(assembler.createVector(&zero));
-  setInitial(model, x);
+  check(assembler.initialState(x));
   StaticSolver solver(assembler);
   check(solver.setUp());
   PetscBool converged;
@@ -81,7 +69,7 @@ inline DynamicHistory runDynamic(const Scene &scene, MPI_Comm comm = PETSC_COMM_
   Vec x, zero;
   check(assembler.createVector(&x));
   check(assembler.createVector(&zero));
-  setInitial(model, x);
+  check(assembler.initialState(x));
   GeneralizedAlpha integrator(assembler, scene.dynamic.rho_inf);
   check(integrator.setUp(scene.dynamic.max_newton));
   check(integrator.initialize(0.0, x, zero));

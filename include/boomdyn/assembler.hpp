@@ -45,6 +45,10 @@ public:
   PetscInt numLocalItems() const { return static_cast<PetscInt>(items_.size()); }
   // Index set of the coordinates (not multipliers) owned by this rank, in x's layout.
   PetscErrorCode coordinateRange(PetscInt *begin, PetscInt *end) const;
+  // x = [initial coordinates of the model | 0].
+  PetscErrorCode initialState(Vec x) const;
+  // dst's multiplier entries = scale * src's multiplier entries (coordinates of dst untouched).
+  PetscErrorCode copyMultipliers(Vec src, Vec dst, PetscReal scale) const;
 
 private:
   PetscErrorCode scatterAndMap(const AssemblyContext &ctx, Vec x);

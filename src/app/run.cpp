@@ -40,21 +40,6 @@ PetscErrorCode allOptions(std::string *out)
   PetscFunctionReturn(0);
 }
 
-// Coordinates of the initial configuration in a vector with x's layout.
-PetscErrorCode setInitialCoordinates(const Model &model, Vec x)
-{
-  PetscInt lo, hi;
-  PetscScalar *a;
-  PetscFunctionBeginUser;
-  const std::vector<double> q0 = model.initialCoordinates();
-  PetscCall(VecSet(x, 0.0));
-  PetscCall(VecGetOwnershipRange(x, &lo, &hi));
-  PetscCall(VecGetArray(x, &a));
-  for (PetscInt i = lo; i < std::min<PetscInt>(hi, model.numCoordinates()); ++i) a[i - lo] = q0[i];
-  PetscCall(VecRestoreArray(x, &a));
-  PetscFunctionReturn(0);
-}
-
 // SLEPc is initialized only by runs that ask for modes.
 PetscErrorCode modalAnalysis(Assembler &assembler, ResultsWriter &out, double t, Vec q, Vec lambda, int count, bool quiet)
 {
@@ -85,7 +70,7 @@ PetscErrorCode runScene(const Scene &scene, const AppOptions &opts, int argc, ch
   Vec x, zero;
   PetscCall(assembler.createVector(&x));
   PetscCall(assembler.createVector(&zero));
-  PetscCall(setInitialCoordinates(model, x));
+  PetscCall(assembler.initialState(x));
 
   RunInfo info;
   info.commandLine = commandLine(argc, argv);

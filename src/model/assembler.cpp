@@ -245,4 +245,33 @@ PetscErrorCode Assembler::coordinateRange(PetscInt *begin, PetscInt *end) const
   PetscFunctionReturn(0);
 }
 
+PetscErrorCode Assembler::initialState(Vec x) const
+{
+  PetscInt lo, hi;
+  PetscScalar *a;
+  PetscFunctionBeginUser;
+  const std::vector<double> q0 = model_.initialCoordinates();
+  PetscCall(VecSet(x, 0.0));
+  PetscCall(VecGetOwnershipRange(x, &lo, &hi));
+  PetscCall(VecGetArray(x, &a));
+  for (PetscInt i = lo; i < std::min<PetscInt>(hi, model_.numCoordinates()); ++i) a[i - lo] = q0[i];
+  PetscCall(VecRestoreArray(x, &a));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode Assembler::copyMultipliers(Vec src, Vec dst, PetscReal scale) const
+{
+  PetscInt lo, hi;
+  const PetscScalar *s;
+  PetscScalar *d;
+  PetscFunctionBeginUser;
+  PetscCall(VecGetOwnershipRange(src, &lo, &hi));
+  PetscCall(VecGetArrayRead(src, &s));
+  PetscCall(VecGetArray(dst, &d));
+  for (PetscInt i = std::max(lo, model_.numCoordinates()); i < hi; ++i) d[i - lo] = scale * s[i - lo];
+  PetscCall(VecRestoreArray(dst, &d));
+  PetscCall(VecRestoreArrayRead(src, &s));
+  PetscFunctionReturn(0);
+}
+
 } // namespace boomdyn

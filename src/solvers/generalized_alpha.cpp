@@ -32,22 +32,6 @@ PetscErrorCode GeneralizedAlpha::setUp(PetscInt maxNewton)
   PetscFunctionReturn(0);
 }
 
-// Copy the multiplier part of src into dst, scaled (the rest of dst is kept).
-static PetscErrorCode copyMultipliers(Vec src, Vec dst, PetscInt nq, PetscReal scale)
-{
-  PetscInt lo, hi;
-  const PetscScalar *s;
-  PetscScalar *d;
-  PetscFunctionBeginUser;
-  PetscCall(VecGetOwnershipRange(src, &lo, &hi));
-  PetscCall(VecGetArrayRead(src, &s));
-  PetscCall(VecGetArray(dst, &d));
-  for (PetscInt i = std::max(lo, nq); i < hi; ++i) d[i - lo] = scale * s[i - lo];
-  PetscCall(VecRestoreArray(dst, &d));
-  PetscCall(VecRestoreArrayRead(src, &s));
-  PetscFunctionReturn(0);
-}
-
 PetscErrorCode GeneralizedAlpha::initialize(double t0, Vec q0, Vec v0)
 {
   PetscInt its;
@@ -73,14 +57,13 @@ PetscErrorCode GeneralizedAlpha::initialize(double t0, Vec q0, Vec v0)
   PetscCall(VecCopy(x_, qdd_));
   PetscCall(VecCopy(x_, a_));
   PetscCall(VecSet(lambda_, 0.0));
-  PetscCall(copyMultipliers(x_, lambda_, assembler_.model().numCoordinates(), massScale_));
+  PetscCall(assembler_.copyMultipliers(x_, lambda_, massScale_));
   PetscFunctionReturn(0);
 }
 
 PetscErrorCode GeneralizedAlpha::step(double h, StepResult *result)
 {
   const AlphaParameters &p = params_;
-  const PetscInt nq = assembler_.model().numCoordinates();
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(logEvents().step, 0, 0, 0, 0));
   const double h2b = h * h * p.beta;
@@ -102,7 +85,7 @@ PetscErrorCode GeneralizedAlpha::step(double h, StepResult *result)
   // carries the large initial accelerations of stiff modes (a suddenly
   // applied load) over a whole step and starts Newton far from the solution.
   PetscCall(VecWAXPY(x_, h, v_, q_));
-  PetscCall(copyMultipliers(lambda_, x_, nq, 1.0 / sigma));
+  PetscCall(assembler_.copyMultipliers(lambda_, x_, 1.0 / sigma));
 
   newton_.ctx = AssemblyContext{};
   newton_.ctx.t = t_ + h;
@@ -118,7 +101,7 @@ PetscErrorCode GeneralizedAlpha::step(double h, StepResult *result)
     PetscCall(VecWAXPY(qdd_, betaP, x_, ac_));
     PetscCall(VecWAXPY(v_, gammaP, x_, vc_));
     PetscCall(VecCopy(x_, q_));
-    PetscCall(copyMultipliers(x_, lambda_, nq, sigma));
+    PetscCall(assembler_.copyMultipliers(x_, lambda_, sigma));
     t_ += h;
   }
   PetscCall(PetscLogEventEnd(logEvents().step, 0, 0, 0, 0));

@@ -25,7 +25,6 @@ PetscErrorCode StaticSolver::solve(double t, int loadSteps, Vec x,
                                    const std::function<PetscErrorCode(const LoadStepInfo &)> &onStep,
                                    PetscBool *converged)
 {
-  const PetscInt nq = assembler_.model().numCoordinates();
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(logEvents().statics, 0, 0, 0, 0));
   PetscReal mass, stiffness;
@@ -68,16 +67,8 @@ PetscErrorCode StaticSolver::solve(double t, int loadSteps, Vec x,
     }
   }
   // Unscaled multipliers.
-  PetscInt lo, hi;
-  const PetscScalar *xs;
-  PetscScalar *ls;
   PetscCall(VecSet(lambda_, 0.0));
-  PetscCall(VecGetOwnershipRange(x, &lo, &hi));
-  PetscCall(VecGetArrayRead(x, &xs));
-  PetscCall(VecGetArray(lambda_, &ls));
-  for (PetscInt i = std::max(lo, nq); i < hi; ++i) ls[i - lo] = sigma_ * xs[i - lo];
-  PetscCall(VecRestoreArray(lambda_, &ls));
-  PetscCall(VecRestoreArrayRead(x, &xs));
+  PetscCall(assembler_.copyMultipliers(x, lambda_, sigma_));
   PetscCall(PetscLogEventEnd(logEvents().statics, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }
