@@ -4,6 +4,7 @@
 #include "boomdyn/ancf_beam.hpp"
 #include "boomdyn/angle_drive.hpp"
 #include "boomdyn/pin.hpp"
+#include "boomdyn/sliding_joint.hpp"
 
 #include <gtest/gtest.h>
 
@@ -114,3 +115,30 @@ TEST_P(ConstraintKernels, AngleDriveWithTimeDependentAngle)
 
 // Inside an element, exactly on an element boundary (0.5 with 4 elements of 0.5 m), and the ends.
 INSTANTIATE_TEST_SUITE_P(MaterialPoints, ConstraintKernels, ::testing::Values(0.0, 0.3, 0.5, 1.0, 2.0 - 1e-12));
+
+// Sliding joint: track beam a, slider point on beam b, slack coordinate last.
+// Checked with s inside a track element, on an element boundary, and near the ends.
+class SlidingJointKernel : public ::testing::TestWithParam<double> {};
+
+TEST_P(SlidingJointKernel, DerivativesMatchFiniteDifferences)
+{
+  AncfBeam track("track", 2.0, 4, kSection, Vec2(0, 0), 0.1, 0);
+  AncfBeam slider("slider", 1.5, 3, kSection, Vec2(0.5, 0.05), 0.1, track.numCoordinates());
+  const PetscInt slack = track.numCoordinates() + slider.numCoordinates();
+  std::vector<double> q0(slack + 1);
+  track.initialCoordinates(q0.data());
+  slider.initialCoordinates(q0.data() + track.numCoordinates());
+  const double s = GetParam();
+  q0[slack] = s;
+  SlidingJoint joint("slide", track, slider, 0.3, slack, s);
+  std::vector<PetscInt> dofs;
+  joint.coordinates(dofs);
+  ASSERT_EQ(dofs.size(), 17u);
+  EXPECT_EQ(dofs.back(), slack);
+  // The random state perturbs s by up to 0.05 m: it may leave the element
+  // (the kernel then extrapolates the element's cubic), which is fine for a
+  // derivative check.
+  checkConstraint(joint, q0, 21);
+}
+
+INSTANTIATE_TEST_SUITE_P(SlackPositions, SlidingJointKernel, ::testing::Values(0.05, 0.8, 1.0, 1.37, 1.95));

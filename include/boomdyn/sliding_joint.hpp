@@ -1,0 +1,48 @@
+// Sliding joint (model.md §2.1): a slider point P, fixed on body j at
+// material coordinate x_P, moves along the centerline of the track body i.
+// The slack coordinate s (material coordinate of the contact point on the
+// track) is an unknown without mass. Two rows:
+//     C_d = i(s) . (r_i(s) - r_j(x_P)) = 0      (defines s)
+//     C_n = j(s) . (r_i(s) - r_j(x_P)) = 0      (no normal gap)
+// with i = r_i'/|r_i'| and j = (-i_y, i_x). Row n's multiplier is the normal
+// contact force in N (when the rows are not scaled).
+//
+// The rows are f(z(q)) with z = (d, t), d = r_i(s) - r_j(x_P), t = r_i'(s):
+// the Jacobian, the multiplier-weighted Hessian and the acceleration term
+// follow from the first and second derivatives of f and of z.
+//
+// The coordinates the rows touch depend on which track element holds s:
+// relocate() moves the joint to the element that holds a new s; the caller
+// rebuilds the assembly pattern when it returns true.
+#pragma once
+
+#include "boomdyn/body.hpp"
+#include "boomdyn/constraint.hpp"
+
+namespace boomdyn {
+
+class SlidingJoint : public Constraint {
+public:
+  SlidingJoint(std::string name, const Body &track, const Body &slider, double sliderPoint, PetscInt slackIndex,
+               double s0);
+  std::string name() const override { return name_; }
+  int numRows() const override { return 2; }
+  void coordinates(std::vector<PetscInt> &dofs) const override;
+  void evaluate(double t, const double *q, const double *v, const double *w, ConstraintEval &out) const override;
+
+  PetscInt slackIndex() const { return slack_; }
+  const Body &track() const { return *track_; }
+  // Element of the track that holds s; true if it changed.
+  bool relocate(double s);
+  // True when s lies in [0, track length].
+  bool onTrack(double s) const { return s >= 0.0 && s <= track_->length(); }
+
+private:
+  std::string name_;
+  const Body *track_, *slider_;
+  double xP_;
+  PetscInt slack_;
+  CenterlineLocation trackLoc_, sliderLoc_;
+};
+
+} // namespace boomdyn
