@@ -25,6 +25,10 @@ public:
   Assembler &operator=(const Assembler &) = delete;
 
   PetscErrorCode setUp(MPI_Comm comm);
+  // After sliding joints relocate: rebuild the pattern (collective). Matrices
+  // made by createMatrix() before are stale: make new ones (petsc-notes trap 1).
+  PetscErrorCode rebuildPattern();
+  int patternVersion() const { return patternVersion_; }
   // A vector with the layout of x = [q | lambda_hat].
   PetscErrorCode createVector(Vec *x) const;
   // An MPIAIJ matrix with the exact preallocation of the Jacobian.
@@ -51,11 +55,13 @@ public:
   PetscErrorCode copyMultipliers(Vec src, Vec dst, PetscReal scale) const;
 
 private:
+  PetscErrorCode buildPattern();
   PetscErrorCode scatterAndMap(const AssemblyContext &ctx, Vec x);
   void gather(std::size_t k, ItemValues &vals);
 
   const Model &model_;
   MPI_Comm comm_ = MPI_COMM_NULL;
+  int patternVersion_ = 0;
   Vec xTemplate_ = nullptr, xLocal_ = nullptr, fLocal_ = nullptr;
   VecScatter scatter_ = nullptr;
   std::vector<const WorkItem *> items_;

@@ -7,6 +7,7 @@
 #include "boomdyn/body.hpp"
 #include "boomdyn/constraint_item.hpp"
 #include "boomdyn/scene.hpp"
+#include "boomdyn/sliding_joint.hpp"
 #include "boomdyn/work_item.hpp"
 
 #include <memory>
@@ -43,6 +44,9 @@ public:
   const std::vector<std::unique_ptr<WorkItem>> &items() const { return items_; }
   const std::vector<const ConstraintItem *> &constraints() const { return constraints_; }
   const std::vector<Sensor> &sensors() const { return sensors_; }
+  // Sliding joints, mutable through a const Model: which track element holds
+  // the contact point is topology state that follows the solution.
+  const std::vector<std::shared_ptr<SlidingJoint>> &slidingJoints() const { return slidingJoints_; }
   const Scene &scene() const { return scene_; }
   // Initial coordinates (undeformed bodies as placed in the scene), size nq.
   std::vector<double> initialCoordinates() const;
@@ -58,6 +62,8 @@ private:
   std::vector<const ConstraintItem *> constraints_;
   std::vector<SourceMark> constraintMarks_;
   std::vector<Sensor> sensors_;
+  std::vector<std::shared_ptr<SlidingJoint>> slidingJoints_;
+  std::vector<std::pair<PetscInt, double>> slackInitial_; // (slack coordinate, initial s)
 };
 
 } // namespace boomdyn

@@ -31,6 +31,7 @@ private:
   static PetscErrorCode formJacobian(SNES, Vec x, Mat J, Mat P, void *self);
 
   Assembler *assembler_ = nullptr;
+  int patternVersion_ = 0;
   SNES snes_ = nullptr;
   Mat J_ = nullptr;
   Vec F_ = nullptr;

@@ -50,13 +50,16 @@ struct ConstraintSpec {
   // pin:         r_a(s_a) = ground point, or r_a(s_a) = r_b(s_b)
   // angle_drive: the tangent of body a at s_a points along theta(t)
   // clamp:       pin to ground + angle_drive (expanded by the Model)
-  enum class Type { Pin, AngleDrive, Clamp };
+  // sliding_joint: the point a (slider body, x_P) moves along the centerline
+  //               of body `track`; its contact coordinate is an unknown
+  enum class Type { Pin, AngleDrive, Clamp, SlidingJoint };
   Type type = Type::Pin;
   std::string name;
   PointRef a;
   std::optional<PointRef> b; // pin between bodies; absent: to ground
   Vec2d ground{0, 0};        // ground point, m (pin/clamp to ground)
   TimeFunction angle;        // rad (angle_drive/clamp)
+  std::string track;         // sliding_joint: the body the slider runs along
   SourceMark mark;
 };
 

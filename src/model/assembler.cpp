@@ -25,17 +25,39 @@ PetscErrorCode Assembler::setUp(MPI_Comm comm)
   PetscCall(VecSetSizes(xTemplate_, PETSC_DECIDE, model_.size()));
   PetscCall(VecSetFromOptions(xTemplate_));
   PetscCall(VecSetUp(xTemplate_));
-  PetscInt lo, hi;
-  PetscCall(VecGetOwnershipRange(xTemplate_, &lo, &hi));
+  PetscCall(buildPattern());
+  PetscFunctionReturn(0);
+}
 
+PetscErrorCode Assembler::rebuildPattern()
+{
+  PetscFunctionBeginUser;
+  // Sliding joints moved to other elements: new dof lists, owners, scatter and COO pattern.
+  PetscCall(VecScatterDestroy(&scatter_));
+  PetscCall(VecDestroy(&xLocal_));
+  PetscCall(VecDestroy(&fLocal_));
+  PetscCall(buildPattern());
+  ++patternVersion_;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode Assembler::buildPattern()
+{
+  PetscInt lo, hi;
+  PetscFunctionBeginUser;
+  PetscCall(VecGetOwnershipRange(xTemplate_, &lo, &hi));
   // Items whose first coordinate this rank owns. Contiguous coordinate
   // numbering per body makes this a contiguous split of each boom's elements.
   std::vector<PetscInt> coords, rows;
   std::vector<std::vector<PetscInt>> dofLists;
   items_.clear();
+  itemCoords_.clear();
+  itemLocal_.clear();
+  cooI_.clear();
+  cooJ_.clear();
   for (const auto &item : model_.items()) {
     item->coordinates(coords);
-    PetscCheck(!coords.empty(), comm, PETSC_ERR_PLIB, "work item %s touches no coordinate", item->name().c_str());
+    PetscCheck(!coords.empty(), comm_, PETSC_ERR_PLIB, "work item %s touches no coordinate", item->name().c_str());
     if (coords[0] < lo || coords[0] >= hi) continue;
     item->multiplierRows(rows);
     items_.push_back(item.get());

@@ -4,6 +4,7 @@
 #include "boomdyn/angle_drive.hpp"
 #include "boomdyn/beam_element_item.hpp"
 #include "boomdyn/pin.hpp"
+#include "boomdyn/sliding_joint.hpp"
 #include "boomdyn/point_load.hpp"
 
 #include <cmath>
@@ -37,9 +38,42 @@ Model::Model(const Scene &scene) : scene_(scene)
     for (int el = 0; el < beam->numElements(); ++el) items_.push_back(std::make_unique<BeamElementItem>(*beam, el, mass, g));
     bodies_.push_back(std::move(beam));
   }
-  for (const ConstraintSpec &c : scene.constraints) {
+  // Slack coordinates follow the body coordinates, one per sliding joint,
+  // starting where the slider point projects onto the (straight) initial track.
+  std::vector<PetscInt> slackOf(scene.constraints.size(), -1);
+  std::vector<double> s0Of(scene.constraints.size(), 0.0);
+  std::vector<double> q0 = initialCoordinates();
+  for (std::size_t k = 0; k < scene.constraints.size(); ++k) {
+    const ConstraintSpec &c = scene.constraints[k];
+    if (c.type != ConstraintSpec::Type::SlidingJoint) continue;
+    const Body *track = findBody(c.track), *slider = findBody(c.a.body);
+    CenterlineSample origin, point;
+    const CenterlineLocation l0 = track->locate(0.0), lp = slider->locate(c.a.s);
+    std::vector<double> v0(8), vp(8);
+    for (int i = 0; i < 8; ++i) v0[i] = q0[l0.dofs[i]], vp[i] = q0[lp.dofs[i]];
+    track->sample(l0, 0.0, v0.data(), origin);
+    slider->sample(lp, c.a.s, vp.data(), point);
+    const double s0 = (point.r[0] - origin.r[0]).dot(origin.r[1].normalized());
+    if (s0 < 0.0 || s0 > track->length()) {
+      std::ostringstream os;
+      os << where(c.mark) << "sliding joint '" << c.name << "': the slider point lies outside its track '" << c.track
+         << "' (at s = " << s0 << " m of " << track->length() << " m)";
+      throw ModelError(os.str());
+    }
+    slackOf[k] = nq_++;
+    s0Of[k] = s0;
+    slackInitial_.push_back({slackOf[k], s0});
+  }
+  for (std::size_t k = 0; k < scene.constraints.size(); ++k) {
+    const ConstraintSpec &c = scene.constraints[k];
     const Body *a = findBody(c.a.body);
     switch (c.type) {
+    case ConstraintSpec::Type::SlidingJoint: {
+      auto joint = std::make_shared<SlidingJoint>(c.name, *findBody(c.track), *a, c.a.s, slackOf[k], s0Of[k]);
+      slidingJoints_.push_back(joint);
+      addConstraint(joint, c.mark);
+      break;
+    }
     case ConstraintSpec::Type::Pin:
       if (c.b) addConstraint(std::make_shared<Pin>(c.name, *a, c.a.s, *findBody(c.b->body), c.b->s), c.mark);
       else addConstraint(std::make_shared<Pin>(c.name, *a, c.a.s, toVec(c.ground)), c.mark);
@@ -83,6 +117,7 @@ std::vector<double> Model::initialCoordinates() const
 {
   std::vector<double> q(nq_);
   for (const auto &b : bodies_) b->initialCoordinates(q.data() + b->firstCoordinate());
+  for (const auto &[index, s0] : slackInitial_) q[index] = s0;
   return q;
 }
 

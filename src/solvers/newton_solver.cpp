@@ -17,6 +17,7 @@ PetscErrorCode NewtonSolver::setUp(Assembler &assembler, const char *prefix, Pet
   SNESLineSearch ls;
   PetscFunctionBeginUser;
   assembler_ = &assembler;
+  patternVersion_ = assembler.patternVersion();
   PetscCall(assembler.createMatrix(&J_));
   PetscCall(assembler.createVector(&F_));
   PetscCall(SNESCreate(assembler.comm(), &snes_));
@@ -45,6 +46,18 @@ PetscErrorCode NewtonSolver::setUp(Assembler &assembler, const char *prefix, Pet
 PetscErrorCode NewtonSolver::solve(Vec x, PetscInt *iterations, SNESConvergedReason *reason)
 {
   PetscFunctionBeginUser;
+  if (patternVersion_ != assembler_->patternVersion()) {
+    // A sliding joint moved to another element: a new matrix with the new
+    // pattern and a reset KSP, so that MUMPS redoes its symbolic
+    // factorization (reusing it is wrong on more than one rank: trap 1).
+    KSP ksp;
+    PetscCall(MatDestroy(&J_));
+    PetscCall(assembler_->createMatrix(&J_));
+    PetscCall(SNESGetKSP(snes_, &ksp));
+    PetscCall(KSPReset(ksp));
+    PetscCall(SNESSetJacobian(snes_, J_, J_, formJacobian, this));
+    patternVersion_ = assembler_->patternVersion();
+  }
   PetscCall(SNESSolve(snes_, nullptr, x));
   PetscCall(SNESGetIterationNumber(snes_, iterations));
   PetscCall(SNESGetConvergedReason(snes_, reason));
