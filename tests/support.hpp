@@ -56,9 +56,30 @@ inline StaticOutcome runStatic(const Scene &scene, MPI_Comm comm = PETSC_COMM_WO
 struct DynamicHistory {
   std::vector<double> time, violation, energy; // energy: kinetic + strain + potential
   std::vector<std::vector<SensorReading>> sensors;
+  std::vector<std::vector<double>> multipliers; // unscaled, every row, per step (all ranks)
+  std::vector<std::vector<double>> slacks;      // slack coordinate of every sliding joint, per step
   RunSummary summary;
   std::vector<double> finalState; // q and v of the last step, gathered on every rank
 };
+
+// All entries of a distributed vector on every rank.
+inline std::vector<double> gatherAll(Vec v)
+{
+  Vec all;
+  VecScatter sc;
+  const PetscScalar *a;
+  PetscInt n;
+  VecScatterCreateToAll(v, &sc, &all);
+  VecScatterBegin(sc, v, all, INSERT_VALUES, SCATTER_FORWARD);
+  VecScatterEnd(sc, v, all, INSERT_VALUES, SCATTER_FORWARD);
+  VecGetSize(all, &n);
+  VecGetArrayRead(all, &a);
+  std::vector<double> out(a, a + n);
+  VecRestoreArrayRead(all, &a);
+  VecScatterDestroy(&sc);
+  VecDestroy(&all);
+  return out;
+}
 
 inline DynamicHistory runDynamic(const Scene &scene, MPI_Comm comm = PETSC_COMM_WORLD)
 {
@@ -86,25 +107,19 @@ inline DynamicHistory runDynamic(const Scene &scene, MPI_Comm comm = PETSC_COMM_
     h.violation.push_back(viol);
     h.energy.push_back(e.kinetic + e.strain + e.potential);
     h.sensors.push_back(r);
+    const std::vector<double> lam = gatherAll(integrator.multipliers()), q = gatherAll(integrator.positions());
+    h.multipliers.emplace_back(lam.begin() + model.numCoordinates(), lam.end());
+    std::vector<double> slack;
+    for (const auto &j : model.slidingJoints()) slack.push_back(q[j->slackIndex()]);
+    h.slacks.push_back(slack);
     PetscFunctionReturn(0);
   };
   check(record(0.0));
   check(integrate(integrator, scene.dynamic, [&](const StepInfo &s) { return record(s.t); }, &h.summary));
   // Final q and v on every rank, for comparisons across rank counts.
   for (Vec v : {integrator.positions(), integrator.velocities()}) {
-    Vec all;
-    VecScatter sc;
-    const PetscScalar *a;
-    PetscInt n;
-    VecScatterCreateToAll(v, &sc, &all);
-    VecScatterBegin(sc, v, all, INSERT_VALUES, SCATTER_FORWARD);
-    VecScatterEnd(sc, v, all, INSERT_VALUES, SCATTER_FORWARD);
-    VecGetSize(all, &n);
-    VecGetArrayRead(all, &a);
-    h.finalState.insert(h.finalState.end(), a, a + model.numCoordinates());
-    VecRestoreArrayRead(all, &a);
-    VecScatterDestroy(&sc);
-    VecDestroy(&all);
+    const std::vector<double> all = gatherAll(v);
+    h.finalState.insert(h.finalState.end(), all.begin(), all.begin() + model.numCoordinates());
   }
   VecDestroy(&x);
   VecDestroy(&zero);

@@ -13,6 +13,9 @@
 #pragma once
 
 #include "boomdyn/newton_solver.hpp"
+#include "boomdyn/slider_tracker.hpp"
+
+#include <string>
 
 namespace boomdyn {
 
@@ -26,11 +29,15 @@ struct StepResult {
   bool converged = false;
   PetscInt iterations = 0;
   SNESConvergedReason reason = SNES_CONVERGED_ITERATING;
+  std::string event; // set when the step cannot be taken at any h (a slider left its track)
 };
 
 class GeneralizedAlpha {
 public:
-  GeneralizedAlpha(Assembler &assembler, double rho_inf) : assembler_(assembler), params_(AlphaParameters::fromRhoInf(rho_inf)) {}
+  GeneralizedAlpha(Assembler &assembler, double rho_inf)
+    : assembler_(assembler), params_(AlphaParameters::fromRhoInf(rho_inf)), sliders_(assembler)
+  {
+  }
   ~GeneralizedAlpha();
   GeneralizedAlpha(const GeneralizedAlpha &) = delete;
   GeneralizedAlpha &operator=(const GeneralizedAlpha &) = delete;
@@ -58,6 +65,7 @@ private:
   Assembler &assembler_;
   AlphaParameters params_;
   NewtonSolver newton_;
+  SliderTracker sliders_;
   double t_ = 0, massScale_ = 1;
   Vec q_ = nullptr, v_ = nullptr, qdd_ = nullptr, a_ = nullptr, lambda_ = nullptr;
   Vec x_ = nullptr, qp_ = nullptr, vc_ = nullptr, ac_ = nullptr, zero_ = nullptr;

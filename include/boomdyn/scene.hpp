@@ -52,7 +52,9 @@ struct ConstraintSpec {
   // clamp:       pin to ground + angle_drive (expanded by the Model)
   // sliding_joint: the point a (slider body, x_P) moves along the centerline
   //               of body `track`; its contact coordinate is an unknown
-  enum class Type { Pin, AngleDrive, Clamp, SlidingJoint };
+  // extraction_drive: the slack coordinate of sliding joint `joint` follows
+  //               s(t) = s(0) + displacement(t)
+  enum class Type { Pin, AngleDrive, Clamp, SlidingJoint, ExtractionDrive };
   Type type = Type::Pin;
   std::string name;
   PointRef a;
@@ -60,6 +62,8 @@ struct ConstraintSpec {
   Vec2d ground{0, 0};        // ground point, m (pin/clamp to ground)
   TimeFunction angle;        // rad (angle_drive/clamp)
   std::string track;         // sliding_joint: the body the slider runs along
+  std::string joint;         // extraction_drive: the sliding joint whose slack coordinate it drives
+  TimeFunction displacement; // extraction_drive: d(t), m
   SourceMark mark;
 };
 

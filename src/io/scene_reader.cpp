@@ -11,6 +11,7 @@
 // without our key path. Scalars are converted by hand instead.
 #include "boomdyn/scene_reader.hpp"
 
+#include <yaml-cpp/eventhandler.h>
 #include <yaml-cpp/yaml.h>
 
 #include <algorithm>
@@ -710,6 +711,8 @@ ConstraintSpec SceneParser::parseConstraint(const Field &f, std::size_t index, c
     for (const char *key : {"point", "other", "other_at"})
       m.forbid(key, "not allowed for an angle_drive (it prescribes only the direction of the body axis)");
     break;
+  default:
+    break; // the other types are not read from scene files (yet)
   }
 
   c.a = point(m, scene);
@@ -833,39 +836,99 @@ OutputSpec SceneParser::parseOutput(const Field &f, const Scene &scene) const
   return o;
 }
 
+// Counts the documents of a YAML stream, at most three, through yaml-cpp's
+// event interface. yaml-cpp 0.7's LoadAll loops forever, allocating, on a
+// document that starts with a stray ',' (yaml-cpp issue #1040): the parser
+// reports the same empty document again and again without advancing. So
+// the reader loads only the first document (YAML::Load, which stops after
+// one), and this bounded pass finds further documents or a stuck parser.
+class DocumentCounter : public YAML::EventHandler {
+public:
+  std::vector<YAML::Mark> starts;
+
+  void OnDocumentStart(const YAML::Mark &mark) override { starts.push_back(mark); }
+  void OnDocumentEnd() override {}
+  void OnNull(const YAML::Mark &, YAML::anchor_t) override {}
+  void OnAlias(const YAML::Mark &, YAML::anchor_t) override {}
+  void OnScalar(const YAML::Mark &, const std::string &, YAML::anchor_t, const std::string &) override {}
+  void OnSequenceStart(const YAML::Mark &, const std::string &, YAML::anchor_t, YAML::EmitterStyle::value) override
+  {
+  }
+  void OnSequenceEnd() override {}
+  void OnMapStart(const YAML::Mark &, const std::string &, YAML::anchor_t, YAML::EmitterStyle::value) override {}
+  void OnMapEnd() override {}
+};
+
+struct DocumentCount {
+  std::size_t documents = 0;          // counted up to 3
+  YAML::Mark second;                  // start of the second document, if any
+  std::optional<YAML::Mark> stuck_at; // where the parser stopped advancing
+};
+
+DocumentCount countDocuments(const std::string &text)
+{
+  std::istringstream in(text);
+  YAML::Parser parser(in);
+  DocumentCounter counter;
+  while (counter.starts.size() < 3 && parser.HandleNextDocument(counter)) {
+    const auto &starts = counter.starts;
+    const std::size_t n = starts.size();
+    if (n >= 2 && starts[n - 1].pos == starts[n - 2].pos)
+      return {n, starts[1], starts[n - 1]};
+  }
+  const auto &starts = counter.starts;
+  return {starts.size(), starts.size() >= 2 ? starts[1] : YAML::Mark{}, std::nullopt};
+}
+
+YAML::Mark markAtLineStart(const std::string &text, std::size_t offset)
+{
+  YAML::Mark mark;
+  mark.pos = static_cast<int>(offset);
+  mark.line = static_cast<int>(std::count(text.begin(), text.begin() + offset, '\n'));
+  mark.column = 0;
+  return mark;
+}
+
+[[noreturn]] void syntaxError(const std::string &file, const YAML::Mark &mark, const std::string &message)
+{
+  throw SceneError(file + ":" + std::to_string(std::max(mark.line, 0) + 1) + ":" +
+                   std::to_string(std::max(mark.column, 0) + 1) + ": YAML syntax error: " + message);
+}
+
 // The parse proper; parseScene adds the catch-all around it.
 Scene parseChecked(const std::string &text, const std::string &file_label)
 {
   const Reporter report(file_label);
-  const YAML::Mark start{}; // line 0, column 0 -> reported as 1:1
   // yaml-cpp silently stops at a NUL byte; say so instead of reading half a file.
-  if (const auto nul = text.find('\0'); nul != std::string::npos) {
-    YAML::Mark at = start;
-    at.line = static_cast<int>(std::count(text.begin(), text.begin() + nul, '\n'));
-    report.fail(at, "", "the file contains a NUL byte (is it a text file?)");
-  }
+  if (const auto nul = text.find('\0'); nul != std::string::npos)
+    report.fail(markAtLineStart(text, nul), "", "the file contains a NUL byte (is it a text file?)");
 
-  std::vector<YAML::Node> documents;
+  YAML::Node root;
+  DocumentCount count;
   try {
-    documents = YAML::LoadAll(text);
+    count = countDocuments(text);
+    if (count.stuck_at) {
+      const std::size_t pos = static_cast<std::size_t>(std::max(count.stuck_at->pos, 0));
+      const std::string found = pos < text.size() ? "'" + text.substr(pos, 1) + "'" : "end of file";
+      syntaxError(file_label, *count.stuck_at, "unexpected " + found + " at the start of a document");
+    }
+    root = YAML::Load(text);
   } catch (const YAML::ParserException &e) {
-    throw SceneError(file_label + ":" + std::to_string(std::max(e.mark.line, 0) + 1) + ":" +
-                     std::to_string(std::max(e.mark.column, 0) + 1) + ": YAML syntax error: " + e.msg);
+    syntaxError(file_label, e.mark, e.msg);
   }
-  if (documents.empty() || documents[0].IsNull())
+  const YAML::Mark start{}; // line 0, column 0 -> reported as 1:1
+  if (root.IsNull() && count.documents <= 1)
     report.fail(start, "", "the scene file is empty; expected a map with at least name, analysis and bodies");
-  if (documents.size() > 1)
-    report.fail(documents[1].Mark(), "",
-                "a scene file holds one YAML document, found " + std::to_string(documents.size()) +
-                    " (remove the '---' separator)");
-  if (!documents[0].IsMap())
-    report.fail(documents[0].Mark(), "",
-                "expected a map with at least name, analysis and bodies, got " + describeNode(documents[0]));
+  if (count.documents > 1)
+    report.fail(count.second, "", "a scene file holds one YAML document, but a second one starts here (remove the "
+                                  "'---' separator)");
+  if (!root.IsMap())
+    report.fail(root.Mark(), "", "expected a map with at least name, analysis and bodies, got " + describeNode(root));
 
   Scene scene;
   scene.file = file_label;
   scene.text = text;
-  SceneParser(report).parse(Field{documents[0], "", documents[0].Mark(), documents[0].Mark()}, scene);
+  SceneParser(report).parse(Field{root, "", root.Mark(), root.Mark()}, scene);
   return scene;
 }
 

@@ -4,6 +4,7 @@
 #include "boomdyn/angle_drive.hpp"
 #include "boomdyn/beam_element_item.hpp"
 #include "boomdyn/pin.hpp"
+#include "boomdyn/slack_drive.hpp"
 #include "boomdyn/sliding_joint.hpp"
 #include "boomdyn/point_load.hpp"
 
@@ -66,8 +67,18 @@ Model::Model(const Scene &scene) : scene_(scene)
   }
   for (std::size_t k = 0; k < scene.constraints.size(); ++k) {
     const ConstraintSpec &c = scene.constraints[k];
-    const Body *a = findBody(c.a.body);
+    const Body *a = c.type == ConstraintSpec::Type::ExtractionDrive ? nullptr : findBody(c.a.body);
     switch (c.type) {
+    case ConstraintSpec::Type::ExtractionDrive: {
+      std::size_t j = 0;
+      while (j < scene.constraints.size() && !(scene.constraints[j].type == ConstraintSpec::Type::SlidingJoint &&
+                                                scene.constraints[j].name == c.joint))
+        ++j;
+      if (j == scene.constraints.size())
+        throw ModelError(where(c.mark) + "extraction drive '" + c.name + "': no sliding joint named '" + c.joint + "'");
+      addConstraint(std::make_shared<SlackDrive>(c.name, slackOf[j], s0Of[j], c.displacement), c.mark);
+      break;
+    }
     case ConstraintSpec::Type::SlidingJoint: {
       auto joint = std::make_shared<SlidingJoint>(c.name, *findBody(c.track), *a, c.a.s, slackOf[k], s0Of[k]);
       slidingJoints_.push_back(joint);

@@ -26,6 +26,7 @@ PetscErrorCode GeneralizedAlpha::setUp(PetscInt maxNewton)
   PetscFunctionBeginUser;
   for (Vec *v : {&q_, &v_, &qdd_, &a_, &lambda_, &x_, &qp_, &vc_, &ac_, &zero_}) PetscCall(assembler_.createVector(v));
   PetscCall(newton_.setUp(assembler_, nullptr, maxNewton));
+  PetscCall(sliders_.setUp(x_));
   PetscReal stiffness;
   PetscCall(assembler_.characteristicScales(zero_, &massScale_, &stiffness));
   if (massScale_ <= 0) massScale_ = 1.0;
@@ -71,29 +72,40 @@ PetscErrorCode GeneralizedAlpha::step(double h, StepResult *result)
   const double gammaP = p.gamma / (h * p.beta);
   const double sigma = massScale_ * betaP;
 
-  // qp = q + h v + h^2 (1/2 - beta) a
-  PetscCall(VecCopy(q_, qp_));
-  PetscCall(VecAXPBYPCZ(qp_, h, h * h * (0.5 - p.beta), 1.0, v_, a_));
-  // qdd(x) = ac + beta' x with ac = -beta' qp + (alpha_m a - alpha_f qdd)/(1 - alpha_f)
-  PetscCall(VecAXPBYPCZ(ac_, p.alpha_m / (1.0 - p.alpha_f), -p.alpha_f / (1.0 - p.alpha_f), 0.0, a_, qdd_));
-  PetscCall(VecAXPY(ac_, -betaP, qp_));
-  // v(x) = vc + gamma' x with vc = v + h (1 - gamma) a - gamma' qp
-  PetscCall(VecCopy(v_, vc_));
-  PetscCall(VecAXPBYPCZ(vc_, h * (1.0 - p.gamma), -gammaP, 1.0, a_, qp_));
+  // A converged solve whose contact points moved to other track elements is
+  // redone with the pattern of the elements that hold them (a few times at
+  // most: a fast slider may cross several elements in one step).
+  bool relocated = false;
+  for (int attempt = 0; attempt < 16; ++attempt) {
+    // qp = q + h v + h^2 (1/2 - beta) a
+    PetscCall(VecCopy(q_, qp_));
+    PetscCall(VecAXPBYPCZ(qp_, h, h * h * (0.5 - p.beta), 1.0, v_, a_));
+    // qdd(x) = ac + beta' x with ac = -beta' qp + (alpha_m a - alpha_f qdd)/(1 - alpha_f)
+    PetscCall(VecAXPBYPCZ(ac_, p.alpha_m / (1.0 - p.alpha_f), -p.alpha_f / (1.0 - p.alpha_f), 0.0, a_, qdd_));
+    PetscCall(VecAXPY(ac_, -betaP, qp_));
+    // v(x) = vc + gamma' x with vc = v + h (1 - gamma) a - gamma' qp
+    PetscCall(VecCopy(v_, vc_));
+    PetscCall(VecAXPBYPCZ(vc_, h * (1.0 - p.gamma), -gammaP, 1.0, a_, qp_));
 
-  // Predictor q_{n+1} = q_n + h v_n. Extrapolating accelerations instead
-  // carries the large initial accelerations of stiff modes (a suddenly
-  // applied load) over a whole step and starts Newton far from the solution.
-  PetscCall(VecWAXPY(x_, h, v_, q_));
-  PetscCall(assembler_.copyMultipliers(lambda_, x_, 1.0 / sigma));
+    // Predictor q_{n+1} = q_n + h v_n. Extrapolating accelerations instead
+    // carries the large initial accelerations of stiff modes (a suddenly
+    // applied load) over a whole step and starts Newton far from the solution.
+    PetscCall(VecWAXPY(x_, h, v_, q_));
+    PetscCall(assembler_.copyMultipliers(lambda_, x_, 1.0 / sigma));
 
-  newton_.ctx = AssemblyContext{};
-  newton_.ctx.t = t_ + h;
-  newton_.ctx.kin = {1.0, gammaP, betaP};
-  newton_.ctx.sigma = sigma;
-  PetscCall(assembler_.setOffsets(nullptr, vc_, ac_));
-  PetscCall(newton_.solve(x_, &result->iterations, &result->reason));
-  result->converged = result->reason > 0;
+    newton_.ctx = AssemblyContext{};
+    newton_.ctx.t = t_ + h;
+    newton_.ctx.kin = {1.0, gammaP, betaP};
+    newton_.ctx.sigma = sigma;
+    PetscCall(assembler_.setOffsets(nullptr, vc_, ac_));
+    PetscCall(newton_.solve(x_, &result->iterations, &result->reason));
+    result->converged = result->reason > 0;
+    if (!result->converged) break;
+    PetscCall(sliders_.update(x_, t_ + h, &relocated, &result->event));
+    if (!result->event.empty()) result->converged = false;
+    if (!relocated || !result->event.empty()) break;
+  }
+  if (relocated && result->event.empty() && result->converged) result->converged = false; // still moving: give up this h
   if (result->converged) {
     // a_{n+1} = (q_{n+1} - qp)/(h^2 beta); qdd, v from the affine maps.
     PetscCall(VecWAXPY(a_, -1.0, qp_, x_));

@@ -19,6 +19,11 @@ PetscErrorCode integrate(GeneralizedAlpha &integrator, const DynamicSpec &spec,
     const double attempt = std::min(h, spec.t_end - integrator.time());
     StepResult r;
     PetscCall(integrator.step(attempt, &r));
+    if (!r.event.empty()) { // no step size helps: stop and say why
+      summary->failure = r.event;
+      summary->steps = info.step;
+      PetscFunctionReturn(0);
+    }
     if (!r.converged) {
       ++summary->rejected;
       h = 0.5 * attempt;

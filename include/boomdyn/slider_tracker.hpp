@@ -1,0 +1,33 @@
+// Follows the slack coordinates of the sliding joints: after a converged
+// Newton solve it brings every joint's s to every rank, moves joints whose
+// contact point has left its track element to the element that holds it
+// (and then rebuilds the assembly pattern), and reports a slider that has
+// left its track altogether.
+#pragma once
+
+#include "boomdyn/assembler.hpp"
+
+#include <string>
+
+namespace boomdyn {
+
+class SliderTracker {
+public:
+  explicit SliderTracker(Assembler &assembler) : assembler_(assembler) {}
+  ~SliderTracker();
+  SliderTracker(const SliderTracker &) = delete;
+  SliderTracker &operator=(const SliderTracker &) = delete;
+
+  PetscErrorCode setUp(Vec layout);
+  // relocated: some joint changed element (pattern rebuilt: redo the solve);
+  // offTrack: non-empty message if a slider left its track.
+  PetscErrorCode update(Vec x, double t, bool *relocated, std::string *offTrack);
+  bool active() const { return !assembler_.model().slidingJoints().empty(); }
+
+private:
+  Assembler &assembler_;
+  VecScatter scatter_ = nullptr;
+  Vec slacks_ = nullptr;
+};
+
+} // namespace boomdyn
