@@ -146,3 +146,20 @@ TEST(SlidingJoint, NormalForceConvergesUnderMeshRefinement)
   EXPECT_LT(errors[1], errors[0]);
   EXPECT_GT(std::log2(errors[1] / errors[2]), 1.0) << "at least first-order convergence of lambda_n";
 }
+
+TEST(SlidingJoint, SliderLeavingItsTrackStopsTheRunWithAMessage)
+{
+  // Push 2 m/s for 1 s: the front pad (starting at s = 0.65 m) reaches the
+  // rod's end (s = 2 m) near t = 0.68 s.
+  Scene scene = sleeveScene(16, 2e-3);
+  scene.constraints.back().displacement = TimeFunction::ramp(0.0, 1.0, 0.0, 2.0);
+  scene.dynamic.t_end = 1.0;
+  const DynamicHistory run = runDynamic(scene);
+  EXPECT_FALSE(run.summary.completed);
+  const std::string &msg = run.summary.failure;
+  PetscPrintf(PETSC_COMM_WORLD, "  message: %s\n", msg.c_str());
+  EXPECT_NE(msg.find("sliding joint 'front' left its track 'rod'"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("t = 0.6"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("s = 2.0"), std::string::npos) << msg;
+  EXPECT_NEAR(run.time.back(), 0.675, 0.01) << "the run stops at the last step that kept the slider on the track";
+}
