@@ -99,9 +99,12 @@ enum class NumberText { Ok, NotANumber, NotFinite, OutOfRange };
 // as are values that overflow a double (1e999).
 NumberText parseNumber(const std::string &text, double &value)
 {
-  std::string lower = text;
-  std::transform(lower.begin(), lower.end(), lower.begin(), [](unsigned char c) { return std::tolower(c); });
-  if (lower.find("nan") != std::string::npos || lower.find("inf") != std::string::npos)
+  // [+-][.](nan|inf|infinity), any case: YAML's and C's spellings.
+  std::string word = text;
+  std::transform(word.begin(), word.end(), word.begin(), [](unsigned char c) { return std::tolower(c); });
+  word.erase(0, word.find_first_not_of("+-"));
+  word.erase(0, word.find_first_not_of('.'));
+  if (word == "nan" || word == "inf" || word == "infinity")
     return NumberText::NotFinite;
   const char *begin = text.data();
   const char *end = text.data() + text.size();

@@ -4,6 +4,7 @@
 #include "boomdyn/angle_drive.hpp"
 #include "boomdyn/beam_element_item.hpp"
 #include "boomdyn/pin.hpp"
+#include "boomdyn/rigid_body.hpp"
 #include "boomdyn/slack_drive.hpp"
 #include "boomdyn/sliding_joint.hpp"
 #include "boomdyn/point_load.hpp"
@@ -30,8 +31,14 @@ Model::Model(const Scene &scene) : scene_(scene)
 {
   const Vec2 g = toVec(scene.gravity);
   for (const BodySpec &b : scene.bodies) {
-    if (b.type != BodySpec::Type::AncfBeam)
-      throw ModelError(where(b.mark) + "body type 'rigid' is not available yet");
+    if (b.type == BodySpec::Type::Rigid) {
+      // Mass from the section's mass per length; EA and EI play no part.
+      auto rigid = std::make_unique<RigidBody>(b.name, b.length, b.section.rhoA * b.length, toVec(b.origin), b.angle, nq_);
+      nq_ += rigid->numCoordinates();
+      items_.push_back(std::make_unique<RigidBodyItem>(*rigid, g));
+      bodies_.push_back(std::move(rigid));
+      continue;
+    }
     const ancf::Section sec{b.section.EA, b.section.EI, b.section.rhoA};
     auto beam = std::make_unique<AncfBeam>(b.name, b.length, b.elements, sec, toVec(b.origin), b.angle, nq_);
     nq_ += beam->numCoordinates();
@@ -100,8 +107,13 @@ Model::Model(const Scene &scene) : scene_(scene)
   }
   for (const PointForceSpec &f : scene.forces)
     items_.push_back(std::make_unique<PointForce>(f.name, *findBody(f.at.body), f.at.s, toVec(f.force), f.scale));
-  for (const PointMassSpec &m : scene.masses)
+  for (const PointMassSpec &m : scene.masses) {
+    // PointMass uses the linear centerline of ANCF beams (no centripetal term).
+    if (dynamic_cast<const RigidBody *>(findBody(m.at.body)))
+      throw ModelError(where(m.mark) + "point mass '" + m.name + "' on rigid body '" + m.at.body +
+                       "': not supported; add its mass to the body's section instead");
     items_.push_back(std::make_unique<PointMass>(m.name, *findBody(m.at.body), m.at.s, m.mass, g));
+  }
   for (const SensorSpec &s : scene.output.sensors) sensors_.push_back({s.name, findBody(s.at.body), s.at.s});
   checkInitialConfiguration();
 }

@@ -429,6 +429,9 @@ TEST(SceneReaderErrors, EmptyAndNonMapDocuments)
   EXPECT_NE(errorOf("- a\n- b\n").find("got a list"), std::string::npos);
   EXPECT_NE(errorOf("just text\n").find("got 'just text'"), std::string::npos);
   EXPECT_NE(errorOf(std::string(kMinimal) + "---\nname: second\n").find("one YAML document"), std::string::npos);
+  // yaml-cpp 0.7's LoadAll loops forever on these (yaml-cpp issue #1040).
+  EXPECT_NE(errorOf(",\n").find("test.yaml:1:1: YAML syntax error: unexpected ','"), std::string::npos);
+  EXPECT_NE(errorOf("# c\n---\n, x\n").find("test.yaml:3:1: YAML syntax error"), std::string::npos);
 }
 
 TEST(SceneReaderErrors, MissingFile)
@@ -461,7 +464,7 @@ TEST(SceneReaderErrors, NeverCrashesOnMangledInput)
   }
   EXPECT_GT(rejected, 0);
   for (std::size_t pos = 0; pos < text.size(); pos += 13) {
-    for (char c : {'\t', '[', '{', ':', '-', '\0', '\xff', '"', '&', '*'}) {
+    for (char c : {'\t', '[', '{', ',', ':', '-', '\0', '\xff', '"', '&', '*'}) {
       std::string mangled = text;
       mangled[pos] = c;
       EXPECT_NO_THROW({
