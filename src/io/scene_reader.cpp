@@ -686,14 +686,49 @@ SectionSpec SceneParser::parseSection(const Field &f, bool rigid) const
 ConstraintSpec SceneParser::parseConstraint(const Field &f, std::size_t index, const Scene &scene,
                                             std::map<std::string, std::string> &taken) const
 {
-  const MapView m(report_, f, {"type", "name", "body", "at", "point", "angle", "other", "other_at"});
-  const std::vector<std::string> types{"clamp", "pin", "angle_drive"};
+  const MapView m(report_, f,
+                  {"type", "name", "body", "at", "point", "angle", "other", "other_at", "track", "joint", "displacement"});
+  const std::vector<std::string> types{"clamp", "pin", "angle_drive", "sliding_joint", "extraction_drive"};
   const std::size_t type = choice(m.require("type", " (one of " + join(types) + ")"), types);
   ConstraintSpec c;
-  c.type = type == 0 ? ConstraintSpec::Type::Clamp
-                     : type == 1 ? ConstraintSpec::Type::Pin : ConstraintSpec::Type::AngleDrive;
+  const ConstraintSpec::Type kinds[] = {ConstraintSpec::Type::Clamp, ConstraintSpec::Type::Pin,
+                                        ConstraintSpec::Type::AngleDrive, ConstraintSpec::Type::SlidingJoint,
+                                        ConstraintSpec::Type::ExtractionDrive};
+  c.type = kinds[type];
   c.mark = report_.sourceMark(f);
   c.name = itemName(m, taken, "constraint", types[type] + std::to_string(index));
+  if (c.type != ConstraintSpec::Type::SlidingJoint)
+    m.forbid("track", "only allowed for a sliding_joint");
+  if (c.type != ConstraintSpec::Type::ExtractionDrive) {
+    m.forbid("joint", "only allowed for an extraction_drive");
+    m.forbid("displacement", "only allowed for an extraction_drive");
+  }
+
+  if (c.type == ConstraintSpec::Type::ExtractionDrive) {
+    // Drives the slack coordinate of a sliding joint: s(t) = s(0) + displacement(t).
+    for (const char *key : {"body", "at", "point", "angle", "other", "other_at"})
+      m.forbid(key, "not allowed for an extraction_drive (it names a sliding joint with 'joint')");
+    const Field joint = m.require("joint");
+    c.joint = name(joint);
+    bool found = false;
+    for (const ConstraintSpec &other : scene.constraints)
+      found = found || (other.type == ConstraintSpec::Type::SlidingJoint && other.name == c.joint);
+    if (!found)
+      report_.fail(joint, "names no sliding_joint listed before it ('" + c.joint + "')");
+    c.displacement = timeFunction(m.require("displacement"));
+    return c;
+  }
+  if (c.type == ConstraintSpec::Type::SlidingJoint) {
+    // The slider point (body, at) runs along the centerline of `track`.
+    for (const char *key : {"point", "angle", "other", "other_at"})
+      m.forbid(key, "not allowed for a sliding_joint (it names the slider point with body/at and the track with 'track')");
+    c.a = point(m, scene);
+    const Field track = m.require("track");
+    c.track = body(track, scene).name;
+    if (c.track == c.a.body)
+      report_.fail(track, "must name another body than 'body' ('" + c.a.body + "')");
+    return c;
+  }
 
   // Forbid the keys that do not belong to this type before reading the rest,
   // so that the message names the real mistake.
