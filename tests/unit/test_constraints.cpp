@@ -4,6 +4,7 @@
 #include "boomdyn/ancf_beam.hpp"
 #include "boomdyn/angle_drive.hpp"
 #include "boomdyn/pin.hpp"
+#include "boomdyn/rigid_body.hpp"
 #include "boomdyn/sliding_joint.hpp"
 
 #include <gtest/gtest.h>
@@ -142,3 +143,24 @@ TEST_P(SlidingJointKernel, DerivativesMatchFiniteDifferences)
 }
 
 INSTANTIATE_TEST_SUITE_P(SlackPositions, SlidingJointKernel, ::testing::Values(0.05, 0.8, 1.0, 1.37, 1.95));
+
+// Rigid bodies: centerlines nonlinear in the rotation, so the curvature
+// terms of the Hessian and of gamma are exercised.
+TEST(RigidBodyConstraints, PinAngleDriveAndSlidingJointOnRigidBodies)
+{
+  RigidBody ramp("ramp", 4.0, 40.0, Vec2(0.1, -0.2), 0.5, 0);
+  RigidBody block("block", 0.5, 5.0, Vec2(1.0, 0.4), 0.45, 3);
+  AncfBeam beam("beam", 2.0, 4, kSection, Vec2(0.3, 0.6), 0.5, 6);
+  std::vector<double> q0(6 + beam.numCoordinates() + 1);
+  ramp.initialCoordinates(q0.data());
+  block.initialCoordinates(q0.data() + 3);
+  beam.initialCoordinates(q0.data() + 6);
+  const PetscInt slack = static_cast<PetscInt>(q0.size()) - 1;
+  q0[slack] = 1.3;
+  checkConstraint(Pin("pin-rigid-ground", ramp, 0.7, Vec2(0.2, 0.1)), q0, 31);
+  checkConstraint(Pin("pin-rigid-rigid", ramp, 3.1, block, 0.2), q0, 32);
+  checkConstraint(AngleDrive("drive-rigid", block, 0.3, TimeFunction::sine(0.2, 1.0, 0.0, 0.4)), q0, 33);
+  checkConstraint(SlidingJoint("slide-rigid-on-rigid", ramp, block, 0.25, slack, 1.3), q0, 34);
+  checkConstraint(SlidingJoint("slide-beam-on-rigid", ramp, beam, 0.6, slack, 1.3), q0, 35);
+  checkConstraint(SlidingJoint("slide-rigid-on-beam", beam, block, 0.1, slack, 1.3), q0, 36);
+}
