@@ -54,11 +54,14 @@ struct ConstraintSpec {
   //               of body `track`; its contact coordinate is an unknown
   // extraction_drive: the slack coordinate of sliding joint `joint` follows
   //               s(t) = s(0) + displacement(t)
-  enum class Type { Pin, AngleDrive, Clamp, SlidingJoint, ExtractionDrive };
+  // rope:        L - |r_from - r_pulley| - |r_pulley - r_to| = 0 (points a, b, c)
+  enum class Type { Pin, AngleDrive, Clamp, SlidingJoint, ExtractionDrive, Rope };
   Type type = Type::Pin;
   std::string name;
   PointRef a;
-  std::optional<PointRef> b; // pin between bodies; absent: to ground
+  std::optional<PointRef> b; // pin between bodies (absent: to ground); rope: the pulley
+  std::optional<PointRef> c; // rope: the far end
+  double length = 0;         // rope length, m; 0: the initial spanned length
   Vec2d ground{0, 0};        // ground point, m (pin/clamp to ground)
   TimeFunction angle;        // rad (angle_drive/clamp)
   std::string track;         // sliding_joint: the body the slider runs along

@@ -687,13 +687,14 @@ ConstraintSpec SceneParser::parseConstraint(const Field &f, std::size_t index, c
                                             std::map<std::string, std::string> &taken) const
 {
   const MapView m(report_, f,
-                  {"type", "name", "body", "at", "point", "angle", "other", "other_at", "track", "joint", "displacement"});
-  const std::vector<std::string> types{"clamp", "pin", "angle_drive", "sliding_joint", "extraction_drive"};
+                  {"type", "name", "body", "at", "point", "angle", "other", "other_at", "track", "joint", "displacement",
+                   "from", "from_at", "pulley", "pulley_at", "to", "to_at", "length"});
+  const std::vector<std::string> types{"clamp", "pin", "angle_drive", "sliding_joint", "extraction_drive", "rope"};
   const std::size_t type = choice(m.require("type", " (one of " + join(types) + ")"), types);
   ConstraintSpec c;
   const ConstraintSpec::Type kinds[] = {ConstraintSpec::Type::Clamp, ConstraintSpec::Type::Pin,
                                         ConstraintSpec::Type::AngleDrive, ConstraintSpec::Type::SlidingJoint,
-                                        ConstraintSpec::Type::ExtractionDrive};
+                                        ConstraintSpec::Type::ExtractionDrive, ConstraintSpec::Type::Rope};
   c.type = kinds[type];
   c.mark = report_.sourceMark(f);
   c.name = itemName(m, taken, "constraint", types[type] + std::to_string(index));
@@ -704,6 +705,19 @@ ConstraintSpec SceneParser::parseConstraint(const Field &f, std::size_t index, c
     m.forbid("displacement", "only allowed for an extraction_drive");
   }
 
+  if (c.type != ConstraintSpec::Type::Rope)
+    for (const char *key : {"from", "from_at", "pulley", "pulley_at", "to", "to_at", "length"})
+      m.forbid(key, "only allowed for a rope");
+  if (c.type == ConstraintSpec::Type::Rope) {
+    // Rope from a point over a pulley to a third point; taut at t = 0 unless a length is given.
+    for (const char *key : {"body", "at", "point", "angle", "other", "other_at"})
+      m.forbid(key, "not allowed for a rope (it names its points with from/from_at, pulley/pulley_at, to/to_at)");
+    c.a = point(m, scene, "from", "from_at");
+    c.b = point(m, scene, "pulley", "pulley_at");
+    c.c = point(m, scene, "to", "to_at");
+    if (const auto len = m.get("length")) c.length = positive(*len);
+    return c;
+  }
   if (c.type == ConstraintSpec::Type::ExtractionDrive) {
     // Drives the slack coordinate of a sliding joint: s(t) = s(0) + displacement(t).
     for (const char *key : {"body", "at", "point", "angle", "other", "other_at"})

@@ -5,6 +5,7 @@
 #include "boomdyn/beam_element_item.hpp"
 #include "boomdyn/pin.hpp"
 #include "boomdyn/rigid_body.hpp"
+#include "boomdyn/rope.hpp"
 #include "boomdyn/slack_drive.hpp"
 #include "boomdyn/sliding_joint.hpp"
 #include "boomdyn/point_load.hpp"
@@ -84,6 +85,20 @@ Model::Model(const Scene &scene) : scene_(scene)
       if (j == scene.constraints.size())
         throw ModelError(where(c.mark) + "extraction drive '" + c.name + "': no sliding joint named '" + c.joint + "'");
       addConstraint(std::make_shared<SlackDrive>(c.name, slackOf[j], s0Of[j], c.displacement), c.mark);
+      break;
+    }
+    case ConstraintSpec::Type::Rope: {
+      const Rope::Point P{a, c.a.s}, Q{findBody(c.b->body), c.b->s}, R{findBody(c.c->body), c.c->s};
+      double length = c.length;
+      if (length <= 0) { // the rope is taut in the initial configuration
+        const Rope probe(c.name, P, Q, R, 0.0);
+        std::vector<PetscInt> dofs;
+        probe.coordinates(dofs);
+        std::vector<double> vals;
+        for (PetscInt d : dofs) vals.push_back(q0[d]);
+        length = probe.spannedLength(vals.data());
+      }
+      addConstraint(std::make_shared<Rope>(c.name, P, Q, R, length), c.mark);
       break;
     }
     case ConstraintSpec::Type::SlidingJoint: {
