@@ -33,12 +33,17 @@ public:
   PetscErrorCode open(const std::string &path, bool overwrite, const RunInfo &info, Vec layout);
   PetscErrorCode appendStep(double t, double dt, PetscInt iterations, double violation, const EnergyParts &energy,
                             const std::vector<SensorReading> &sensors);
+  // Slack coordinates and unscaled multipliers of the same step (rank 0 data).
+  PetscErrorCode appendJoints(const std::vector<double> &slacks, const std::vector<double> &multipliers,
+                              const std::vector<double> &ropeTensions);
   // Full state snapshot; lambda holds unscaled multipliers in its last entries.
   PetscErrorCode appendState(double t, Vec q, Vec v, Vec lambda);
   PetscErrorCode writeModes(double t, const ModalResult &modes);
   PetscErrorCode finish(const std::string &status, PetscInt steps, PetscInt rejected, double wallTime,
                         double maxViolation);
   const std::string &path() const { return path_; }
+  // Steps at which a rope would have had to push (tension < 0), for /summary.
+  void setSlackRopeSteps(PetscInt n) { slackRopeSteps_ = n; }
 
 private:
   PetscErrorCode gather(Vec v, std::vector<double> &out);
@@ -53,6 +58,7 @@ private:
   std::unique_ptr<Hdf5File> file_;
   VecScatter toZero_ = nullptr;
   Vec gathered_ = nullptr;
+  PetscInt slackRopeSteps_ = 0;
   std::chrono::steady_clock::time_point lastFlush_ = std::chrono::steady_clock::now();
 };
 

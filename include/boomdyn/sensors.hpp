@@ -25,12 +25,15 @@ public:
   PetscErrorCode setUp(Vec layout);
   // Readings of every sensor (valid on rank 0 only; other ranks get zeros).
   PetscErrorCode read(Vec q, Vec v, std::vector<SensorReading> &out);
+  // Slack coordinates of the sliding joints (from q) and all unscaled
+  // multipliers (from lambda, layout of x), on rank 0.
+  PetscErrorCode readJoints(Vec q, Vec lambda, std::vector<double> &slacks, std::vector<double> &multipliers);
 
 private:
   const Model &model_;
   std::vector<CenterlineLocation> locations_;
-  VecScatter scatter_ = nullptr;
-  Vec gathered_ = nullptr;
+  VecScatter scatter_ = nullptr, slackScatter_ = nullptr, lambdaScatter_ = nullptr;
+  Vec gathered_ = nullptr, slacks_ = nullptr, multipliers_ = nullptr;
   int rank_ = 0;
 };
 

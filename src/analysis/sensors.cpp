@@ -4,8 +4,45 @@ namespace boomdyn {
 
 SensorProbe::~SensorProbe()
 {
-  if (scatter_) (void)VecScatterDestroy(&scatter_);
-  if (gathered_) (void)VecDestroy(&gathered_);
+  for (VecScatter *sc : {&scatter_, &slackScatter_, &lambdaScatter_})
+    if (*sc) (void)VecScatterDestroy(sc);
+  for (Vec *v : {&gathered_, &slacks_, &multipliers_})
+    if (*v) (void)VecDestroy(v);
+}
+
+// A scatter of the given global indices of `layout` to a sequential vector on rank 0.
+static PetscErrorCode scatterToRankZero(Vec layout, int rank, const std::vector<PetscInt> &idx, VecScatter *sc, Vec *out)
+{
+  IS is;
+  PetscFunctionBeginUser;
+  const PetscInt n = rank == 0 ? static_cast<PetscInt>(idx.size()) : 0;
+  PetscCall(ISCreateGeneral(PETSC_COMM_SELF, n, idx.data(), PETSC_COPY_VALUES, &is));
+  PetscCall(VecCreateSeq(PETSC_COMM_SELF, n, out));
+  PetscCall(VecScatterCreate(layout, is, *out, nullptr, sc));
+  PetscCall(ISDestroy(&is));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode gatherTo(VecScatter sc, Vec src, Vec dst, std::vector<double> &out)
+{
+  const PetscScalar *a;
+  PetscInt n;
+  PetscFunctionBeginUser;
+  PetscCall(VecScatterBegin(sc, src, dst, INSERT_VALUES, SCATTER_FORWARD));
+  PetscCall(VecScatterEnd(sc, src, dst, INSERT_VALUES, SCATTER_FORWARD));
+  PetscCall(VecGetLocalSize(dst, &n));
+  PetscCall(VecGetArrayRead(dst, &a));
+  out.assign(a, a + n);
+  PetscCall(VecRestoreArrayRead(dst, &a));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SensorProbe::readJoints(Vec q, Vec lambda, std::vector<double> &slacks, std::vector<double> &multipliers)
+{
+  PetscFunctionBeginUser;
+  PetscCall(gatherTo(slackScatter_, q, slacks_, slacks));
+  PetscCall(gatherTo(lambdaScatter_, lambda, multipliers_, multipliers));
+  PetscFunctionReturn(0);
 }
 
 PetscErrorCode SensorProbe::setUp(Vec layout)
@@ -21,12 +58,12 @@ PetscErrorCode SensorProbe::setUp(Vec layout)
     idx.insert(idx.end(), loc.dofs.begin(), loc.dofs.begin() + loc.count);
   }
   // Rank 0 receives every sensor's coordinates; the other ranks ask for none.
-  const PetscInt n = rank_ == 0 ? static_cast<PetscInt>(idx.size()) : 0;
-  IS is;
-  PetscCall(ISCreateGeneral(PETSC_COMM_SELF, n, idx.data(), PETSC_COPY_VALUES, &is));
-  PetscCall(VecCreateSeq(PETSC_COMM_SELF, n, &gathered_));
-  PetscCall(VecScatterCreate(layout, is, gathered_, nullptr, &scatter_));
-  PetscCall(ISDestroy(&is));
+  PetscCall(scatterToRankZero(layout, rank_, idx, &scatter_, &gathered_));
+  std::vector<PetscInt> slack, rows;
+  for (const auto &j : model_.slidingJoints()) slack.push_back(j->slackIndex());
+  for (PetscInt r = 0; r < model_.numMultipliers(); ++r) rows.push_back(model_.numCoordinates() + r);
+  PetscCall(scatterToRankZero(layout, rank_, slack, &slackScatter_, &slacks_));
+  PetscCall(scatterToRankZero(layout, rank_, rows, &lambdaScatter_, &multipliers_));
   PetscFunctionReturn(0);
 }
 

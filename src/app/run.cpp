@@ -7,6 +7,7 @@
 #include "boomdyn/generalized_alpha.hpp"
 #include "boomdyn/model.hpp"
 #include "boomdyn/results_writer.hpp"
+#include "boomdyn/rope.hpp"
 #include "boomdyn/sensors.hpp"
 #include "boomdyn/static_solver.hpp"
 #include "boomdyn/time_stepper.hpp"
@@ -82,6 +83,31 @@ PetscErrorCode runScene(const Scene &scene, const AppOptions &opts, int argc, ch
   SensorProbe sensors(model);
   PetscCall(sensors.setUp(x));
   std::vector<SensorReading> readings;
+  std::vector<double> slacks, multipliers, tensions;
+  // Rope tensions are minus the multipliers of the rope rows (C = L - l1 - l2).
+  std::vector<std::pair<std::string, PetscInt>> ropeRows;
+  for (const ConstraintItem *c : model.constraints())
+    if (dynamic_cast<const Rope *>(&c->constraint())) ropeRows.push_back({c->name(), c->firstRow() - model.numCoordinates()});
+  PetscInt slackRopeSteps = 0;
+  auto recordJoints = [&](double t) -> PetscErrorCode {
+    PetscFunctionBeginUser;
+    tensions.clear();
+    bool slack = false;
+    std::string which;
+    for (const auto &[name, row] : ropeRows)
+      if (!multipliers.empty()) {
+        tensions.push_back(-multipliers[row]);
+        if (tensions.back() < 0 && !slack) slack = true, which = name;
+      }
+    PetscCall(out.appendJoints(slacks, multipliers, tensions));
+    int flag = slack;
+    PetscCallMPI(MPI_Bcast(&flag, 1, MPI_INT, 0, PETSC_COMM_WORLD));
+    if (flag && slackRopeSteps++ == 0)
+      PetscCall(PetscPrintf(PETSC_COMM_WORLD, "warning: rope '%s' would have to push at t = %g s (tension %g N): the rope "
+                            "is slack there; counted in /summary/slack_rope_steps\n", which.c_str(), t,
+                            tensions.empty() ? 0.0 : *std::min_element(tensions.begin(), tensions.end())));
+    PetscFunctionReturn(0);
+  };
 
   if (!opts.quiet)
     PetscCall(PetscPrintf(PETSC_COMM_WORLD, "boomdyn %s: scene '%s' (%s), %" PetscInt_FMT " coordinates, %" PetscInt_FMT
@@ -103,6 +129,8 @@ PetscErrorCode runScene(const Scene &scene, const AppOptions &opts, int argc, ch
     PetscCall(integrator.diagnostics(&energy, &violation));
     PetscCall(sensors.read(integrator.positions(), integrator.velocities(), readings));
     PetscCall(out.appendStep(0.0, 0.0, 0, violation, energy, readings));
+    PetscCall(sensors.readJoints(integrator.positions(), integrator.multipliers(), slacks, multipliers));
+    PetscCall(recordJoints(0.0));
     PetscCall(out.appendState(0.0, integrator.positions(), integrator.velocities(), integrator.multipliers()));
     maxViolation = violation;
     double nextState = scene.output.state_interval;
@@ -112,6 +140,8 @@ PetscErrorCode runScene(const Scene &scene, const AppOptions &opts, int argc, ch
       maxViolation = std::max(maxViolation, (double)violation);
       PetscCall(sensors.read(integrator.positions(), integrator.velocities(), readings));
       PetscCall(out.appendStep(s.t, s.h, s.iterations, violation, energy, readings));
+      PetscCall(sensors.readJoints(integrator.positions(), integrator.multipliers(), slacks, multipliers));
+      PetscCall(recordJoints(s.t));
       const bool last = s.t >= scene.dynamic.t_end * (1 - 1e-12);
       if ((scene.output.state_interval > 0 && s.t >= nextState - 1e-9 * s.h) || last) {
         PetscCall(out.appendState(s.t, integrator.positions(), integrator.velocities(), integrator.multipliers()));
@@ -173,6 +203,7 @@ PetscErrorCode runScene(const Scene &scene, const AppOptions &opts, int argc, ch
       PetscCall(modalAnalysis(assembler, out, scene.statics.time, x, statics.multipliers(), scene.modal.count, opts.quiet));
     PetscCall(VecDestroy(&lambda0));
   }
+  out.setSlackRopeSteps(slackRopeSteps);
   PetscCall(out.finish(status, steps, rejected, progress.elapsed(), maxViolation));
   PetscCall(VecDestroy(&x));
   PetscCall(VecDestroy(&zero));

@@ -1,6 +1,7 @@
 #include "boomdyn/results_writer.hpp"
 
 #include "boomdyn/log_events.hpp"
+#include "boomdyn/rope.hpp"
 
 #include <chrono>
 #include <ctime>
@@ -75,6 +76,13 @@ PetscErrorCode ResultsWriter::open(const std::string &path, bool overwrite, cons
       file_->writeStrings("/layout/body_names", names);
       file_->writeArray("/layout/body_first_coordinate", first, {first.size()});
       file_->writeArray("/layout/body_num_coordinates", count, {count.size()});
+      std::vector<std::string> joints;
+      for (const auto &j : model_.slidingJoints()) joints.push_back(j->name());
+      if (!joints.empty()) file_->writeStrings("/layout/sliding_joint_names", joints);
+      std::vector<std::string> ropes;
+      for (const ConstraintItem *c : model_.constraints())
+        if (dynamic_cast<const Rope *>(&c->constraint())) ropes.push_back(c->name());
+      if (!ropes.empty()) file_->writeStrings("/layout/rope_names", ropes);
       if (!cnames.empty()) {
         file_->writeStrings("/layout/constraint_names", cnames);
         file_->writeArray("/layout/constraint_first_row", cfirst, {cfirst.size()});
@@ -127,6 +135,18 @@ PetscErrorCode ResultsWriter::appendStep(double t, double dt, PetscInt iteration
   PetscCall(PetscLogEventBegin(logEvents().output, 0, 0, 0, 0));
   PetscCall(onRankZero(comm_, rank_, [&] { appendStepRow(t, dt, iterations, violation, e, sensors); }));
   PetscCall(PetscLogEventEnd(logEvents().output, 0, 0, 0, 0));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ResultsWriter::appendJoints(const std::vector<double> &slacks, const std::vector<double> &multipliers,
+                                           const std::vector<double> &ropeTensions)
+{
+  PetscFunctionBeginUser;
+  PetscCall(onRankZero(comm_, rank_, [&] {
+    if (!slacks.empty()) file_->appendRow("/steps/slack", slacks.data(), slacks.size());
+    if (!multipliers.empty()) file_->appendRow("/steps/lambda", multipliers.data(), multipliers.size());
+    if (!ropeTensions.empty()) file_->appendRow("/steps/rope_tension", ropeTensions.data(), ropeTensions.size());
+  }));
   PetscFunctionReturn(0);
 }
 
@@ -218,6 +238,7 @@ PetscErrorCode ResultsWriter::finish(const std::string &status, PetscInt steps, 
     file_->setAttribute("/summary", "rejected_steps", static_cast<long long>(rejected));
     file_->setAttribute("/summary", "wall_time_s", wallTime);
     file_->setAttribute("/summary", "max_constraint_violation", maxViolation);
+    file_->setAttribute("/summary", "slack_rope_steps", static_cast<long long>(slackRopeSteps_));
     file_->close();
   }));
   PetscFunctionReturn(0);
