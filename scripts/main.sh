@@ -5,7 +5,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/install-deps.sh
 scripts/build.sh
-scene=inputs/cantilever_dynamic.yaml
+scene=inputs/paper_extraction.yaml
 mkdir -p out
 ./build/boomdyn "$scene" -o out/main.h5 -boom_overwrite "$@"
 /usr/bin/python3 postprocess/plot_run.py out/main.h5 -o out/main_plots
