@@ -32,3 +32,8 @@ add_test(NAME postprocess.plot_run
   COMMAND ${python} ${CMAKE_SOURCE_DIR}/tests/postprocess/test_plot_run.py
   WORKING_DIRECTORY ${CMAKE_BINARY_DIR})
 set_tests_properties(postprocess.plot_run PROPERTIES LABELS postprocess)
+
+add_test(NAME postprocess.frame_deflection
+  COMMAND ${python} ${CMAKE_SOURCE_DIR}/tests/postprocess/test_frame_deflection.py $<TARGET_FILE:boomdyn>
+          ${CMAKE_SOURCE_DIR} ${CMAKE_BINARY_DIR})
+set_tests_properties(postprocess.frame_deflection PROPERTIES LABELS postprocess)

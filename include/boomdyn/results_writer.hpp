@@ -35,7 +35,7 @@ public:
                             const std::vector<SensorReading> &sensors);
   // Slack coordinates and unscaled multipliers of the same step (rank 0 data).
   PetscErrorCode appendJoints(const std::vector<double> &slacks, const std::vector<double> &multipliers,
-                              const std::vector<double> &ropeTensions);
+                              const std::vector<double> &ropeTensions, const std::vector<double> &frameDeflections);
   // Full state snapshot; lambda holds unscaled multipliers in its last entries.
   PetscErrorCode appendState(double t, Vec q, Vec v, Vec lambda);
   PetscErrorCode writeModes(double t, const ModalResult &modes);

@@ -90,6 +90,16 @@ struct SensorSpec {
   PointRef at;
 };
 
+// Deflection of a material point in a body's moving frame (paper Fig. 9):
+// origin at the body's start (s = 0), x-axis through the contact point of
+// sliding joint `axisJoint` on that body; the output is the point's
+// coordinate normal to the axis (m).
+struct FrameSensorSpec {
+  std::string name;
+  PointRef point;        // body and the material point whose deflection is measured
+  std::string axisJoint; // sliding joint that has `point.body` as its track
+};
+
 struct DynamicSpec {
   double t_end = 1.0;     // s
   double dt = 1e-3;       // s
@@ -111,6 +121,7 @@ struct ModalSpec {
 struct OutputSpec {
   double state_interval = 0; // s; 0: full state at the first and last step only
   std::vector<SensorSpec> sensors;
+  std::vector<FrameSensorSpec> frames;
 };
 
 struct Scene {

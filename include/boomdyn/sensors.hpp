@@ -28,12 +28,20 @@ public:
   // Slack coordinates of the sliding joints (from q) and all unscaled
   // multipliers (from lambda, layout of x), on rank 0.
   PetscErrorCode readJoints(Vec q, Vec lambda, std::vector<double> &slacks, std::vector<double> &multipliers);
+  // Moving-frame deflections of the scene's frame sensors (rank 0).
+  PetscErrorCode readFrames(Vec q, std::vector<double> &deflections);
 
 private:
   const Model &model_;
   std::vector<CenterlineLocation> locations_;
-  VecScatter scatter_ = nullptr, slackScatter_ = nullptr, lambdaScatter_ = nullptr;
-  Vec gathered_ = nullptr, slacks_ = nullptr, multipliers_ = nullptr;
+  VecScatter scatter_ = nullptr, slackScatter_ = nullptr, lambdaScatter_ = nullptr, frameScatter_ = nullptr;
+  Vec gathered_ = nullptr, slacks_ = nullptr, multipliers_ = nullptr, frameValues_ = nullptr;
+  struct Frame {
+    const Body *body;
+    double s;        // material point measured
+    PetscInt offset; // of the body's coordinates in frameValues_; its slack value follows them
+  };
+  std::vector<Frame> frames_;
   int rank_ = 0;
 };
 

@@ -1,12 +1,14 @@
 #include "boomdyn/sensors.hpp"
 
+#include <algorithm>
+
 namespace boomdyn {
 
 SensorProbe::~SensorProbe()
 {
-  for (VecScatter *sc : {&scatter_, &slackScatter_, &lambdaScatter_})
+  for (VecScatter *sc : {&scatter_, &slackScatter_, &lambdaScatter_, &frameScatter_})
     if (*sc) (void)VecScatterDestroy(sc);
-  for (Vec *v : {&gathered_, &slacks_, &multipliers_})
+  for (Vec *v : {&gathered_, &slacks_, &multipliers_, &frameValues_})
     if (*v) (void)VecDestroy(v);
 }
 
@@ -37,6 +39,31 @@ static PetscErrorCode gatherTo(VecScatter sc, Vec src, Vec dst, std::vector<doub
   PetscFunctionReturn(0);
 }
 
+PetscErrorCode SensorProbe::readFrames(Vec q, std::vector<double> &deflections)
+{
+  std::vector<double> vals;
+  PetscFunctionBeginUser;
+  PetscCall(gatherTo(frameScatter_, q, frameValues_, vals));
+  deflections.clear();
+  if (rank_ != 0) PetscFunctionReturn(0);
+  for (const Frame &f : frames_) {
+    const double *body = vals.data() + f.offset;
+    const double sAxis = std::clamp(body[f.body->numCoordinates()], 0.0, f.body->length());
+    // Position of material point s from the body's gathered coordinates.
+    auto position = [&](double s) {
+      const CenterlineLocation loc = f.body->locate(s);
+      double local[8];
+      for (int k = 0; k < loc.count; ++k) local[k] = body[loc.dofs[k] - f.body->firstCoordinate()];
+      CenterlineSample p;
+      f.body->sample(loc, s, local, p);
+      return Vec2(p.r[0]);
+    };
+    const Vec2 origin = position(0.0), axis = (position(sAxis) - origin).normalized();
+    deflections.push_back((position(f.s) - origin).dot(Vec2(-axis.y(), axis.x())));
+  }
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode SensorProbe::readJoints(Vec q, Vec lambda, std::vector<double> &slacks, std::vector<double> &multipliers)
 {
   PetscFunctionBeginUser;
@@ -64,6 +91,18 @@ PetscErrorCode SensorProbe::setUp(Vec layout)
   for (PetscInt r = 0; r < model_.numMultipliers(); ++r) rows.push_back(model_.numCoordinates() + r);
   PetscCall(scatterToRankZero(layout, rank_, slack, &slackScatter_, &slacks_));
   PetscCall(scatterToRankZero(layout, rank_, rows, &lambdaScatter_, &multipliers_));
+  // Frame sensors: the whole body (the axis point moves along it) and the joint's slack coordinate.
+  std::vector<PetscInt> frameIdx;
+  for (const FrameSensorSpec &f : model_.scene().output.frames) {
+    const Body *body = model_.findBody(f.point.body);
+    PetscInt slack = -1;
+    for (const auto &j : model_.slidingJoints())
+      if (j->name() == f.axisJoint) slack = j->slackIndex();
+    frames_.push_back({body, f.point.s, static_cast<PetscInt>(frameIdx.size())});
+    for (PetscInt k = 0; k < body->numCoordinates(); ++k) frameIdx.push_back(body->firstCoordinate() + k);
+    frameIdx.push_back(slack);
+  }
+  PetscCall(scatterToRankZero(layout, rank_, frameIdx, &frameScatter_, &frameValues_));
   PetscFunctionReturn(0);
 }
 

@@ -83,7 +83,7 @@ PetscErrorCode runScene(const Scene &scene, const AppOptions &opts, int argc, ch
   SensorProbe sensors(model);
   PetscCall(sensors.setUp(x));
   std::vector<SensorReading> readings;
-  std::vector<double> slacks, multipliers, tensions;
+  std::vector<double> slacks, multipliers, tensions, deflections;
   // Rope tensions are minus the multipliers of the rope rows (C = L - l1 - l2).
   std::vector<std::pair<std::string, PetscInt>> ropeRows;
   for (const ConstraintItem *c : model.constraints())
@@ -99,7 +99,7 @@ PetscErrorCode runScene(const Scene &scene, const AppOptions &opts, int argc, ch
         tensions.push_back(-multipliers[row]);
         if (tensions.back() < 0 && !slack) slack = true, which = name;
       }
-    PetscCall(out.appendJoints(slacks, multipliers, tensions));
+    PetscCall(out.appendJoints(slacks, multipliers, tensions, deflections));
     int flag = slack;
     PetscCallMPI(MPI_Bcast(&flag, 1, MPI_INT, 0, PETSC_COMM_WORLD));
     if (flag && slackRopeSteps++ == 0)
@@ -130,6 +130,7 @@ PetscErrorCode runScene(const Scene &scene, const AppOptions &opts, int argc, ch
     PetscCall(sensors.read(integrator.positions(), integrator.velocities(), readings));
     PetscCall(out.appendStep(0.0, 0.0, 0, violation, energy, readings));
     PetscCall(sensors.readJoints(integrator.positions(), integrator.multipliers(), slacks, multipliers));
+    PetscCall(sensors.readFrames(integrator.positions(), deflections));
     PetscCall(recordJoints(0.0));
     PetscCall(out.appendState(0.0, integrator.positions(), integrator.velocities(), integrator.multipliers()));
     maxViolation = violation;
@@ -141,6 +142,7 @@ PetscErrorCode runScene(const Scene &scene, const AppOptions &opts, int argc, ch
       PetscCall(sensors.read(integrator.positions(), integrator.velocities(), readings));
       PetscCall(out.appendStep(s.t, s.h, s.iterations, violation, energy, readings));
       PetscCall(sensors.readJoints(integrator.positions(), integrator.multipliers(), slacks, multipliers));
+      PetscCall(sensors.readFrames(integrator.positions(), deflections));
       PetscCall(recordJoints(s.t));
       const bool last = s.t >= scene.dynamic.t_end * (1 - 1e-12);
       if ((scene.output.state_interval > 0 && s.t >= nextState - 1e-9 * s.h) || last) {

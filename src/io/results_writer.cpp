@@ -83,6 +83,9 @@ PetscErrorCode ResultsWriter::open(const std::string &path, bool overwrite, cons
       for (const ConstraintItem *c : model_.constraints())
         if (dynamic_cast<const Rope *>(&c->constraint())) ropes.push_back(c->name());
       if (!ropes.empty()) file_->writeStrings("/layout/rope_names", ropes);
+      std::vector<std::string> frames;
+      for (const FrameSensorSpec &f : sc.output.frames) frames.push_back(f.name);
+      if (!frames.empty()) file_->writeStrings("/layout/frame_names", frames);
       if (!cnames.empty()) {
         file_->writeStrings("/layout/constraint_names", cnames);
         file_->writeArray("/layout/constraint_first_row", cfirst, {cfirst.size()});
@@ -139,13 +142,16 @@ PetscErrorCode ResultsWriter::appendStep(double t, double dt, PetscInt iteration
 }
 
 PetscErrorCode ResultsWriter::appendJoints(const std::vector<double> &slacks, const std::vector<double> &multipliers,
-                                           const std::vector<double> &ropeTensions)
+                                           const std::vector<double> &ropeTensions,
+                                           const std::vector<double> &frameDeflections)
 {
   PetscFunctionBeginUser;
   PetscCall(onRankZero(comm_, rank_, [&] {
     if (!slacks.empty()) file_->appendRow("/steps/slack", slacks.data(), slacks.size());
     if (!multipliers.empty()) file_->appendRow("/steps/lambda", multipliers.data(), multipliers.size());
     if (!ropeTensions.empty()) file_->appendRow("/steps/rope_tension", ropeTensions.data(), ropeTensions.size());
+    if (!frameDeflections.empty())
+      file_->appendRow("/steps/frame_deflection", frameDeflections.data(), frameDeflections.size());
   }));
   PetscFunctionReturn(0);
 }

@@ -870,7 +870,7 @@ ModalSpec SceneParser::parseModal(const Field &f, bool required_nonzero) const
 
 OutputSpec SceneParser::parseOutput(const Field &f, const Scene &scene) const
 {
-  const MapView m(report_, f, {"state_interval", "sensors"});
+  const MapView m(report_, f, {"state_interval", "sensors", "frames"});
   OutputSpec o;
   if (const auto interval = m.get("state_interval"))
     o.state_interval = nonNegative(*interval);
@@ -883,6 +883,26 @@ OutputSpec SceneParser::parseOutput(const Field &f, const Scene &scene) const
       sensor.name = itemName(s, taken, "sensor", "sensor" + std::to_string(i));
       sensor.at = point(s, scene);
       o.sensors.push_back(sensor);
+    }
+  }
+  if (const auto frames = m.get("frames")) {
+    std::map<std::string, std::string> taken;
+    const auto items = list(*frames);
+    for (std::size_t i = 0; i < items.size(); ++i) {
+      const MapView s(report_, items[i], {"name", "body", "at", "axis_joint"});
+      FrameSensorSpec frame;
+      frame.name = itemName(s, taken, "frame", "frame" + std::to_string(i));
+      frame.point = point(s, scene);
+      const Field joint = s.require("axis_joint");
+      frame.axisJoint = name(joint);
+      bool found = false;
+      for (const ConstraintSpec &c : scene.constraints)
+        found = found || (c.type == ConstraintSpec::Type::SlidingJoint && c.name == frame.axisJoint &&
+                          c.track == frame.point.body);
+      if (!found)
+        report_.fail(joint, "must name a sliding_joint whose track is '" + frame.point.body + "' (got '" +
+                              frame.axisJoint + "')");
+      o.frames.push_back(frame);
     }
   }
   return o;
