@@ -18,12 +18,40 @@ struct ModalResult {
   std::vector<double> frequencyHz;       // sqrt(max(omega2,0)) / 2 pi
   std::vector<std::vector<double>> shapes; // coordinates part, gathered on rank 0 (empty elsewhere), max-norm 1
   std::vector<double> residuals;         // relative residual norms ||A x - w B x|| / ||x||
+  // Eigenvectors in the layout of x with the multiplier part zeroed (only
+  // when asked for; owned here).
+  std::vector<Vec> vectors;
+
+  ModalResult() = default;
+  ModalResult(const ModalResult &) = delete;
+  ModalResult &operator=(const ModalResult &) = delete;
+  ModalResult(ModalResult &&) = default;
+  ModalResult &operator=(ModalResult &&other) noexcept
+  {
+    std::swap(omega2, other.omega2), std::swap(frequencyHz, other.frequencyHz), std::swap(shapes, other.shapes);
+    std::swap(residuals, other.residuals), std::swap(vectors, other.vectors);
+    return *this;
+  }
+  ~ModalResult()
+  {
+    for (Vec &v : vectors) (void)VecDestroy(&v);
+  }
+};
+
+struct ModalOptions {
+  // Eigenvalues (omega^2) nearest the target are found. Slightly negative by
+  // default: A - target B stays nonsingular when the mechanism has
+  // rigid-body modes (omega = 0). -modal_eps_target overrides it.
+  double target = -1.0;
+  Vec initialGuess = nullptr; // warm start (layout of x), e.g. the previous mode
+  bool keepVectors = false;   // return the eigenvectors in ModalResult::vectors
 };
 
 // Linearize at coordinates q (layout of x, multiplier part ignored) with
 // unscaled multipliers lambda (layout of x, coordinate part ignored) at time
-// t, and find the `count` eigenvalues nearest the target (options prefix
-// "modal_": -modal_eps_target, -modal_eps_view, -modal_st_ksp_... ).
-PetscErrorCode solveModes(Assembler &assembler, double t, Vec q, Vec lambda, int count, ModalResult *result);
+// t, and find the `count` eigenvalues nearest the target, in ascending order
+// (options prefix "modal_": -modal_eps_target, -modal_eps_view, -modal_st_ksp_... ).
+PetscErrorCode solveModes(Assembler &assembler, double t, Vec q, Vec lambda, int count, ModalResult *result,
+                          const ModalOptions &options = ModalOptions{});
 
 } // namespace boomdyn

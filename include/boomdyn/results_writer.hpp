@@ -4,6 +4,7 @@
 #pragma once
 
 #include "boomdyn/eigen_solver.hpp"
+#include "boomdyn/frequency_tracker.hpp"
 #include "boomdyn/hdf5_file.hpp"
 #include "boomdyn/model.hpp"
 #include "boomdyn/sensors.hpp"
@@ -39,6 +40,8 @@ public:
   // Full state snapshot; lambda holds unscaled multipliers in its last entries.
   PetscErrorCode appendState(double t, Vec q, Vec v, Vec lambda);
   PetscErrorCode writeModes(double t, const ModalResult &modes);
+  // One row of frequency tracking; with the tracked shape when writeShape.
+  PetscErrorCode appendTracking(const TrackedModes &modes, bool writeShape);
   PetscErrorCode finish(const std::string &status, PetscInt steps, PetscInt rejected, double wallTime,
                         double maxViolation);
   const std::string &path() const { return path_; }

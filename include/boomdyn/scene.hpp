@@ -118,6 +118,15 @@ struct ModalSpec {
   std::string at = "end";  // "start" (initial state) or "end" (after static/dynamic solve)
 };
 
+// Eigen-analysis along a dynamic run (model.md §5): every `interval` seconds
+// the system is linearized at the current state and `count` modes are found;
+// the first bending mode is followed by mode continuity (MAC).
+struct TrackingSpec {
+  double interval = 0;           // s; 0: no tracking
+  int count = 4;                 // modes per analysis
+  std::vector<double> shapesAt;  // times (s) at which the tracked shape is written
+};
+
 struct OutputSpec {
   double state_interval = 0; // s; 0: full state at the first and last step only
   std::vector<SensorSpec> sensors;
@@ -139,6 +148,7 @@ struct Scene {
   DynamicSpec dynamic;
   StaticSpec statics;
   ModalSpec modal;
+  TrackingSpec tracking;
   OutputSpec output;
 
   const BodySpec *findBody(const std::string &name) const;

@@ -12,7 +12,8 @@
 
 namespace boomdyn {
 
-PetscErrorCode solveModes(Assembler &assembler, double t, Vec q, Vec lambda, int count, ModalResult *result)
+PetscErrorCode solveModes(Assembler &assembler, double t, Vec q, Vec lambda, int count, ModalResult *result,
+                          const ModalOptions &options)
 {
   const PetscInt nq = assembler.model().numCoordinates();
   Mat A, B;
@@ -66,7 +67,11 @@ PetscErrorCode solveModes(Assembler &assembler, double t, Vec q, Vec lambda, int
   PetscCall(EPSSetTolerances(eps, 1e-12, 500));
   // A slightly negative target keeps A - target B nonsingular when the
   // mechanism has rigid-body modes (omega = 0).
-  PetscCall(EPSSetTarget(eps, -1.0));
+  PetscCall(EPSSetTarget(eps, options.target));
+  if (options.initialGuess) {
+    Vec guess = options.initialGuess;
+    PetscCall(EPSSetInitialSpace(eps, 1, &guess));
+  }
   PetscCall(EPSSetWhichEigenpairs(eps, EPS_TARGET_MAGNITUDE));
   PetscCall(EPSGetST(eps, &st));
   PetscCall(STSetType(st, STSINVERT));
@@ -93,12 +98,22 @@ PetscErrorCode solveModes(Assembler &assembler, double t, Vec q, Vec lambda, int
   Vec gathered;
   PetscCall(VecScatterCreateToZero(xr, &toZero, &gathered));
   *result = ModalResult{};
+  Vec zero;
+  PetscCall(VecDuplicate(xr, &zero));
+  PetscCall(VecSet(zero, 0.0));
   for (int k = 0; k < count; ++k) {
     const PetscInt i = order[k];
     PetscScalar w;
     PetscReal err;
     PetscCall(EPSGetEigenpair(eps, i, &w, nullptr, xr, nullptr));
     PetscCall(EPSComputeError(eps, i, EPS_ERROR_RELATIVE, &err));
+    if (options.keepVectors) {
+      Vec v;
+      PetscCall(VecDuplicate(xr, &v));
+      PetscCall(VecCopy(xr, v));
+      PetscCall(assembler.copyMultipliers(zero, v, 0.0)); // shape only: drop the multiplier part
+      result->vectors.push_back(v);
+    }
     result->omega2.push_back(w);
     result->frequencyHz.push_back(std::sqrt(std::max(w, 0.0)) / (2.0 * M_PI));
     result->residuals.push_back(err);
@@ -118,6 +133,7 @@ PetscErrorCode solveModes(Assembler &assembler, double t, Vec q, Vec lambda, int
       result->shapes.push_back(std::move(shape));
     }
   }
+  PetscCall(VecDestroy(&zero));
   PetscCall(VecScatterDestroy(&toZero));
   PetscCall(VecDestroy(&gathered));
   PetscCall(VecDestroy(&xr));

@@ -4,6 +4,7 @@
 
 #include "boomdyn/assembler.hpp"
 #include "boomdyn/eigen_solver.hpp"
+#include "boomdyn/frequency_tracker.hpp"
 #include "boomdyn/generalized_alpha.hpp"
 #include "boomdyn/model.hpp"
 #include "boomdyn/results_writer.hpp"
@@ -16,6 +17,7 @@
 #include <slepcsys.h>
 
 #include <algorithm>
+#include <memory>
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
@@ -135,6 +137,30 @@ PetscErrorCode runScene(const Scene &scene, const AppOptions &opts, int argc, ch
     PetscCall(out.appendState(0.0, integrator.positions(), integrator.velocities(), integrator.multipliers()));
     maxViolation = violation;
     double nextState = scene.output.state_interval;
+    // Frequency tracking: SLEPc only for scenes that ask for it.
+    std::unique_ptr<FrequencyTracker> tracker;
+    double nextTrack = 0.0;
+    std::vector<double> shapeTimes = scene.tracking.shapesAt;
+    auto track = [&](double t, double h) -> PetscErrorCode {
+      PetscFunctionBeginUser;
+      if (!tracker || t < nextTrack - 1e-9 * h) PetscFunctionReturn(0);
+      TrackedModes modes;
+      PetscCall(tracker->analyze(t, integrator.positions(), integrator.multipliers(), &modes));
+      // A shape is written at the first analysis at or after each requested time.
+      bool shape = false;
+      while (!shapeTimes.empty() && *std::min_element(shapeTimes.begin(), shapeTimes.end()) <= t + 1e-9 * h) {
+        shapeTimes.erase(std::min_element(shapeTimes.begin(), shapeTimes.end()));
+        shape = true;
+      }
+      PetscCall(out.appendTracking(modes, shape));
+      while (nextTrack <= t + 1e-9 * h) nextTrack += scene.tracking.interval;
+      PetscFunctionReturn(0);
+    };
+    if (scene.tracking.interval > 0) {
+      PetscCall(SlepcInitialize(nullptr, nullptr, nullptr, nullptr));
+      tracker = std::make_unique<FrequencyTracker>(assembler, scene.tracking.count);
+      PetscCall(track(0.0, scene.dynamic.dt));
+    }
     auto onStep = [&](const StepInfo &s) -> PetscErrorCode {
       PetscFunctionBeginUser;
       PetscCall(integrator.diagnostics(&energy, &violation));
@@ -149,6 +175,7 @@ PetscErrorCode runScene(const Scene &scene, const AppOptions &opts, int argc, ch
         PetscCall(out.appendState(s.t, integrator.positions(), integrator.velocities(), integrator.multipliers()));
         while (scene.output.state_interval > 0 && nextState <= s.t + 1e-9 * s.h) nextState += scene.output.state_interval;
       }
+      PetscCall(track(s.t, s.h));
       PetscCall(progress.update(s.step, s.t, s.h, s.iterations, s.rejected));
       PetscFunctionReturn(0);
     };

@@ -234,6 +234,25 @@ void ResultsWriter::writeModeArrays(double t, const ModalResult &modes)
   file_->flush();
 }
 
+PetscErrorCode ResultsWriter::appendTracking(const TrackedModes &m, bool writeShape)
+{
+  PetscFunctionBeginUser;
+  PetscCall(PetscLogEventBegin(logEvents().output, 0, 0, 0, 0));
+  PetscCall(onRankZero(comm_, rank_, [&] {
+    file_->appendScalar("/tracking/time", m.t);
+    file_->appendRow("/tracking/frequencies_hz", m.frequencyHz.data(), m.frequencyHz.size());
+    file_->appendScalar("/tracking/tracked_hz", m.trackedHz);
+    file_->appendScalar("/tracking/mac", m.mac);
+    file_->appendScalarInt("/tracking/tracked_index", m.index);
+    if (writeShape) {
+      file_->appendScalar("/tracking/shape_time", m.t);
+      file_->appendRow("/tracking/shapes", m.shape.data(), m.shape.size());
+    }
+  }));
+  PetscCall(PetscLogEventEnd(logEvents().output, 0, 0, 0, 0));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode ResultsWriter::finish(const std::string &status, PetscInt steps, PetscInt rejected, double wallTime,
                                      double maxViolation)
 {

@@ -544,7 +544,7 @@ void SceneParser::parse(const Field &root, Scene &scene)
 {
   const MapView top(report_, root,
                     {"name", "description", "analysis", "gravity", "bodies", "constraints", "loads", "masses",
-                     "dynamic", "static", "modal", "output"});
+                     "dynamic", "static", "modal", "tracking", "output"});
   scene.name = name(top.require("name"));
   if (const auto d = top.get("description"))
     scene.description = d->node.IsNull() ? "" : scalarText(*d, "a text");
@@ -604,6 +604,15 @@ void SceneParser::parse(const Field &root, Scene &scene)
   else if (const auto m = top.get("modal"))
     scene.modal = parseModal(*m, false);
 
+  if (const auto tr = top.get("tracking")) {
+    if (scene.analysis != Scene::Analysis::Dynamic)
+      report_.fail(*tr, "frequency tracking needs 'analysis: dynamic'");
+    const MapView m(report_, *tr, {"interval", "count", "shapes_at"});
+    scene.tracking.interval = positive(m.require("interval"));
+    if (const auto c = m.get("count")) scene.tracking.count = integer(*c, 1, 100);
+    if (const auto sa = m.get("shapes_at"))
+      for (const Field &item : list(*sa)) scene.tracking.shapesAt.push_back(nonNegative(item));
+  }
   if (const auto o = top.get("output"))
     scene.output = parseOutput(*o, scene);
 }

@@ -1,0 +1,41 @@
+// Frequencies along a trajectory (model.md §5): at each call the system is
+// linearized at the given state and the modes nearest half the last tracked
+// omega^2 are found (shift-and-invert, warm-started from the last tracked
+// shape); the first bending mode is followed by mode continuity, i.e. the
+// mode with the largest MAC against the previous shape, not by sorting.
+// At the first call the lowest mode with omega^2 > 0 is taken.
+#pragma once
+
+#include "boomdyn/eigen_solver.hpp"
+
+namespace boomdyn {
+
+struct TrackedModes {
+  double t = 0;
+  std::vector<double> frequencyHz; // every mode found, ascending
+  double trackedHz = 0;            // the followed mode
+  double mac = 1;                  // MAC of the followed mode against the previous one (1 at the start)
+  int index = 0;                   // its position in frequencyHz
+  std::vector<double> shape;       // its shape (rank 0), max-norm 1
+};
+
+class FrequencyTracker {
+public:
+  FrequencyTracker(Assembler &assembler, int count) : assembler_(assembler), count_(count) {}
+  ~FrequencyTracker();
+  FrequencyTracker(const FrequencyTracker &) = delete;
+  FrequencyTracker &operator=(const FrequencyTracker &) = delete;
+
+  PetscErrorCode analyze(double t, Vec q, Vec lambda, TrackedModes *out);
+
+private:
+  Assembler &assembler_;
+  int count_;
+  Vec previous_ = nullptr;
+  double previousOmega2_ = 0;
+};
+
+// MAC = (a.b)^2 / ((a.a)(b.b)), collective.
+PetscErrorCode modalAssurance(Vec a, Vec b, double *mac);
+
+} // namespace boomdyn
