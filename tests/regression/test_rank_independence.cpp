@@ -3,6 +3,10 @@
 // Meaningful under mpiexec -n 2 (CTest entry mpi2.regression).
 #include "support.hpp"
 
+#include "boomdyn/frequency_tracker.hpp"
+
+#include <slepcsys.h>
+
 #include <cmath>
 
 using namespace boomdyn;
@@ -82,4 +86,63 @@ TEST(RankIndependence, ExtractionSceneMatchesSingleRank)
   PetscPrintf(PETSC_COMM_WORLD, "  extraction, %d ranks vs 1: max relative difference of final q, v = %.3e\n", size,
               diff / norm);
   EXPECT_LT(diff / norm, 1e-10);
+}
+
+namespace {
+
+// Tracked frequencies every 0.1 s along a shortened extraction of the paper scene.
+std::vector<double> trackedAlongExtraction(MPI_Comm comm)
+{
+  Scene scene = readSceneFile(std::string(BOOMDYN_SOURCE_DIR) + "/inputs/paper_extraction.yaml");
+  for (auto &c : scene.constraints)
+    if (c.type == ConstraintSpec::Type::ExtractionDrive) c.displacement = TimeFunction::smoothStep(0.0, 0.4, 0.0, 0.4);
+  scene.dynamic.t_end = 0.4;
+  Model model(scene);
+  Assembler assembler(model);
+  Vec x, zero;
+  check(assembler.setUp(comm));
+  check(assembler.createVector(&x));
+  check(assembler.createVector(&zero));
+  check(assembler.initialState(x));
+  GeneralizedAlpha integrator(assembler, scene.dynamic.rho_inf);
+  check(integrator.setUp(scene.dynamic.max_newton));
+  check(integrator.initialize(0.0, x, zero));
+  check(SlepcInitialize(nullptr, nullptr, nullptr, nullptr));
+  FrequencyTracker tracker(assembler, 4);
+  std::vector<double> out;
+  double next = 0.0;
+  auto onStep = [&](const StepInfo &s) -> PetscErrorCode {
+    PetscFunctionBeginUser;
+    if (s.t >= next - 1e-9) {
+      TrackedModes m;
+      PetscCall(tracker.analyze(s.t, integrator.positions(), integrator.multipliers(), &m));
+      out.insert(out.end(), m.frequencyHz.begin(), m.frequencyHz.end());
+      next += 0.1;
+    }
+    PetscFunctionReturn(0);
+  };
+  RunSummary summary;
+  check(integrate(integrator, scene.dynamic, onStep, &summary));
+  EXPECT_TRUE(summary.completed);
+  VecDestroy(&x);
+  VecDestroy(&zero);
+  return out;
+}
+
+} // namespace
+
+TEST(RankIndependence, TrackedFrequenciesMatchSingleRank)
+{
+  PetscMPIInt size;
+  MPI_Comm_size(PETSC_COMM_WORLD, &size);
+  if (size == 1) GTEST_SKIP() << "run under mpiexec -n 2 (CTest: mpi2.regression)";
+  const std::vector<double> distributed = trackedAlongExtraction(PETSC_COMM_WORLD);
+  const std::vector<double> alone = trackedAlongExtraction(PETSC_COMM_SELF);
+  ASSERT_EQ(distributed.size(), alone.size());
+  ASSERT_GE(alone.size(), 12u);
+  double worst = 0;
+  for (std::size_t i = 0; i < alone.size(); ++i) worst = std::max(worst, std::abs(distributed[i] - alone[i]) / alone[i]);
+  PetscPrintf(PETSC_COMM_WORLD, "  tracked frequencies, %d ranks vs 1: %zu values, max relative difference %.3e\n", size,
+              alone.size(), worst);
+  EXPECT_LT(worst, 1e-8);
 }

@@ -5,8 +5,8 @@
 // displacement (the linearized normal condition of a frictionless sliding
 // joint), all solved in one dense direct solve with Lagrange multipliers.
 #include "support.hpp"
+#include "telescope_reference.hpp"
 
-#include <Eigen/Dense>
 
 #include <cmath>
 
@@ -15,53 +15,15 @@ using namespace boomdyn::testing;
 
 namespace {
 
-struct Boom {
-  double x0, EI, rhoA;
-};
-
-const double kL = 2.0, kG = 9.81, kP = 100.0, kE = 2.1e11, kRho = 7850;
 const double kA[3] = {6.944e-3, 5.264e-3, 3.816e-3}, kI[3] = {6.395214e-5, 3.720306e-5, 1.986431e-5};
 
 // Tip deflection (y of boom 3's end) of the linear pad-coupled reference.
 double referenceTipDeflection(const double x0[3])
 {
-  const double h = 0.05;
-  const int n = static_cast<int>(std::lround(kL / h)); // elements per boom
-  const int dofsPerBoom = 2 * (n + 1), nd = 3 * dofsPerBoom;
-  auto dof = [&](int boom, int node, int k) { return boom * dofsPerBoom + 2 * node + k; };
-  auto nodeAt = [&](int boom, double x) { return static_cast<int>(std::lround((x - x0[boom]) / h)); };
-  // Pads (slider boom, slider x) on (track boom): j1: boom1 end on boom2; j2: boom2 start on boom1;
-  // j3: boom2 end on boom3; j4: boom3 start on boom2.
-  struct Pad { int a, b; double x; };
-  const Pad pads[4] = {{0, 1, x0[0] + kL}, {1, 0, x0[1]}, {1, 2, x0[1] + kL}, {2, 1, x0[2]}};
-  const int nc = 2 + 4, N = nd + nc; // clamp (w, theta) + pads
-  Eigen::MatrixXd K = Eigen::MatrixXd::Zero(N, N);
-  Eigen::VectorXd f = Eigen::VectorXd::Zero(N);
-  for (int b = 0; b < 3; ++b) {
-    const double EI = kE * kI[b], q = -kRho * kA[b] * kG;
-    Eigen::Matrix4d ke;
-    ke << 12, 6 * h, -12, 6 * h, 6 * h, 4 * h * h, -6 * h, 2 * h * h, -12, -6 * h, 12, -6 * h, 6 * h, 2 * h * h, -6 * h,
-      4 * h * h;
-    ke *= EI / (h * h * h);
-    const Eigen::Vector4d fe(q * h / 2, q * h * h / 12, q * h / 2, -q * h * h / 12);
-    for (int e = 0; e < n; ++e) {
-      const int d[4] = {dof(b, e, 0), dof(b, e, 1), dof(b, e + 1, 0), dof(b, e + 1, 1)};
-      for (int i = 0; i < 4; ++i) {
-        f[d[i]] += fe[i];
-        for (int j = 0; j < 4; ++j) K(d[i], d[j]) += ke(i, j);
-      }
-    }
-  }
-  f[dof(2, n, 0)] += -kP;
-  int row = nd;
-  for (int k = 0; k < 2; ++k, ++row) K(row, dof(0, 0, k)) = K(dof(0, 0, k), row) = 1.0;
-  for (const Pad &p : pads) {
-    K(row, dof(p.a, nodeAt(p.a, p.x), 0)) = K(dof(p.a, nodeAt(p.a, p.x), 0), row) = 1.0;
-    K(row, dof(p.b, nodeAt(p.b, p.x), 0)) = K(dof(p.b, nodeAt(p.b, p.x), 0), row) = -1.0;
-    ++row;
-  }
-  const Eigen::VectorXd u = K.fullPivLu().solve(f);
-  return u[dof(2, n, 0)];
+  TelescopeReference ref;
+  ref.tipLoad = 100.0;
+  std::copy(x0, x0 + 3, ref.x0);
+  return ref.tipDeflection();
 }
 
 std::string number(double v)
