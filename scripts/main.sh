@@ -9,4 +9,5 @@ scene=inputs/paper_extraction.yaml
 mkdir -p out
 ./build/boomdyn "$scene" -o out/main.h5 -boom_overwrite "$@"
 /usr/bin/python3 postprocess/plot_run.py out/main.h5 -o out/main_plots
+/usr/bin/python3 postprocess/plot_frequency.py out/main.h5 -o out/main_plots/frequency.png --paper
 echo "main: results in out/main.h5, plots in out/main_plots/"

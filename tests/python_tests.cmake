@@ -37,3 +37,8 @@ add_test(NAME postprocess.frame_deflection
   COMMAND ${python} ${CMAKE_SOURCE_DIR}/tests/postprocess/test_frame_deflection.py $<TARGET_FILE:boomdyn>
           ${CMAKE_SOURCE_DIR} ${CMAKE_BINARY_DIR})
 set_tests_properties(postprocess.frame_deflection PROPERTIES LABELS postprocess)
+
+add_test(NAME postprocess.frequency_check
+  COMMAND ${python} ${CMAKE_SOURCE_DIR}/tests/postprocess/test_frequency_check.py $<TARGET_FILE:boomdyn>
+          ${CMAKE_SOURCE_DIR} ${CMAKE_BINARY_DIR})
+set_tests_properties(postprocess.frequency_check PROPERTIES LABELS postprocess)

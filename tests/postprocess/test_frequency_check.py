@@ -1,0 +1,45 @@
+#!/usr/bin/env python3
+"""Independent check of the tracked first frequency: the dominant frequency
+of the simulated tip vibration (zero crossings, postprocess/signal_frequency.py)
+must follow the eigen-analysis along the paper extraction scene, here its
+first 3.5 s (2 s at rest at 27 Hz, then 0.375 m of extraction per stage).
+Also renders the Fig. 7 plot and checks it is a non-empty picture.
+Usage: test_frequency_check.py BOOMDYN_EXECUTABLE SOURCE_DIR WORK_DIR"""
+import os
+import subprocess
+import sys
+
+import h5py
+import matplotlib.image
+import numpy as np
+
+boomdyn, source, work = sys.argv[1:4]
+sys.path.insert(0, os.path.join(source, "postprocess"))
+from signal_frequency import zero_crossing_frequency  # noqa: E402
+
+out = os.path.join(work, "frequency_check.h5")
+subprocess.run([boomdyn, os.path.join(source, "inputs", "paper_extraction.yaml"), "-o", out, "-boom_overwrite",
+                "-boom_quiet", "-ts_max_time", "3.5"], check=True, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+with h5py.File(out) as f:
+    tt, fr = f["tracking/time"][()], f["tracking/tracked_hz"][()]
+    t, y = f["steps/time"][()], f["sensors/tip/position"][:, 1]
+tc, fc = zero_crossing_frequency(t, y, 3.0 / fr.min())
+keep = (tc > 0.3) & (tc < 3.3)  # away from the ends of the moving average
+rel = np.abs(fc[keep] - np.interp(tc[keep], tt, fr)) / np.interp(tc[keep], tt, fr)
+print("zero crossings: %d periods, median relative difference %.2e, 90th percentile %.2e; tracked %.3f -> %.3f Hz"
+      % (keep.sum(), np.median(rel), np.percentile(rel, 90), fr[0], fr[-1]))
+passed = failed = 0
+for ok, what in [(keep.sum() > 50, "enough periods"), (np.median(rel) < 0.01, "median within 1 %"),
+                 (np.percentile(rel, 90) < 0.03, "90 % within 3 %"), (abs(fr[0] - 27.0) < 0.01, "27.0 Hz retracted"),
+                 (fr[-1] < 0.9 * fr[0], "frequency falls during extraction")]:
+    print(("ok   " if ok else "FAIL ") + what)
+    passed, failed = passed + ok, failed + (not ok)
+png = os.path.join(work, "frequency_check.png")
+subprocess.run([sys.executable, os.path.join(source, "postprocess", "plot_frequency.py"), out, "-o", png, "--paper"],
+               check=True, stdout=subprocess.DEVNULL)
+img = matplotlib.image.imread(png)
+ok = img.size > 0 and float(img.std()) > 0
+print(("ok   " if ok else "FAIL ") + "Fig. 7 plot is a non-empty picture")
+passed, failed = passed + ok, failed + (not ok)
+print("%d passed, %d failed" % (passed, failed))
+sys.exit(1 if failed else 0)
