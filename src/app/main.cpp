@@ -17,7 +17,8 @@
 
 static const char help[] = "boomdyn SCENE.yaml [-o OUT.h5] [-boom_overwrite] [-boom_quiet] [-boom_elements N]\n"
                            "  [-boom_elements_<body> N] [-ts_dt h] [-ts_max_time T] [-boom_rho_inf r]\n"
-                           "  [-boom_state_interval dt] [-boom_modal_count k] [-boom_load_steps n] [PETSc options]\n";
+                           "  [-boom_state_interval dt] [-boom_modal_count k] [-boom_load_steps n]\n"
+                           "  [-boom_tracking_interval dt] [PETSc options]\n";
 
 int main(int argc, char **argv)
 {

@@ -84,6 +84,12 @@ PetscErrorCode applySceneOverrides(Scene *scene)
     require(r >= 0, "-boom_state_interval must be >= 0 (got " + std::to_string(r) + ")");
     scene->output.state_interval = r;
   }
+  PetscCall(PetscOptionsGetReal(nullptr, "boom_", "-tracking_interval", &r, &set));
+  if (set) {
+    require(r >= 0, "-boom_tracking_interval must be >= 0 (0 turns tracking off; got " + std::to_string(r) + ")");
+    require(r == 0 || scene->analysis == Scene::Analysis::Dynamic, "-boom_tracking_interval needs a dynamic scene");
+    scene->tracking.interval = r;
+  }
   PetscCall(PetscOptionsGetInt(nullptr, "boom_", "-modal_count", &n, &set));
   if (set) {
     require(n >= 0 && n <= 1000, "-boom_modal_count must lie in [0, 1000]");
