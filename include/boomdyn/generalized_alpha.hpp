@@ -62,6 +62,11 @@ public:
   const AlphaParameters &parameters() const { return params_; }
 
 private:
+  template <class Op>
+  PetscErrorCode forFirstOrder(Op op);
+  template <class Op>
+  PetscErrorCode forFirstOrderState(Op op);
+
   Assembler &assembler_;
   AlphaParameters params_;
   NewtonSolver newton_;

@@ -47,6 +47,9 @@ public:
   // Sliding joints, mutable through a const Model: which track element holds
   // the contact point is topology state that follows the solution.
   const std::vector<std::shared_ptr<SlidingJoint>> &slidingJoints() const { return slidingJoints_; }
+  // Coordinates that are first-order states (LuGre z), with their joints' names.
+  const std::vector<PetscInt> &firstOrderCoordinates() const { return firstOrder_; }
+  const std::vector<std::string> &frictionJointNames() const { return frictionJoints_; }
   const Scene &scene() const { return scene_; }
   // Initial coordinates (undeformed bodies as placed in the scene), size nq.
   std::vector<double> initialCoordinates() const;
@@ -64,6 +67,8 @@ private:
   std::vector<Sensor> sensors_;
   std::vector<std::shared_ptr<SlidingJoint>> slidingJoints_;
   std::vector<std::pair<PetscInt, double>> slackInitial_; // (slack coordinate, initial s)
+  std::vector<PetscInt> firstOrder_;
+  std::vector<std::string> frictionJoints_;
 };
 
 } // namespace boomdyn

@@ -46,6 +46,18 @@ struct PointRef {
   double s = 0;
 };
 
+// LuGre friction at a sliding joint (model.md §3): F_t = (sigma0 z + sigma1
+// zdot) |lambda_n| + sigma2 v_r with zdot = v_r - sigma0 |v_r| z / g(v_r),
+// g(v) = mu_c + (mu_s - mu_c) exp(-|v / v_s|^alpha).
+struct FrictionSpec {
+  double mu_s = 0.15, mu_c = 0.1; // static and kinetic coefficients
+  double v_s = 1e-3;              // Stribeck velocity, m/s
+  double alpha = 2.0;             // Stribeck exponent
+  double sigma0 = 1e5;            // bristle stiffness per unit normal force, 1/m
+  double sigma1 = 0.0;            // bristle damping per unit normal force, s/m
+  double sigma2 = 0.0;            // viscous friction, N s/m
+};
+
 struct ConstraintSpec {
   // pin:         r_a(s_a) = ground point, or r_a(s_a) = r_b(s_b)
   // angle_drive: the tangent of body a at s_a points along theta(t)
@@ -67,6 +79,7 @@ struct ConstraintSpec {
   std::string track;         // sliding_joint: the body the slider runs along
   std::string joint;         // extraction_drive: the sliding joint whose slack coordinate it drives
   TimeFunction displacement; // extraction_drive: d(t), m
+  std::optional<FrictionSpec> friction; // sliding_joint: LuGre friction (absent: frictionless)
   SourceMark mark;
 };
 

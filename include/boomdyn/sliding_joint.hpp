@@ -32,6 +32,10 @@ public:
 
   PetscInt slackIndex() const { return slack_; }
   const Body &track() const { return *track_; }
+  const Body &slider() const { return *slider_; }
+  double sliderPoint() const { return xP_; }
+  const CenterlineLocation &trackLocation() const { return trackLoc_; }
+  const CenterlineLocation &sliderLocation() const { return sliderLoc_; }
   // Element of the track that holds s; true if it changed.
   bool relocate(double s);
   // True when s lies in [0, track length].

@@ -22,8 +22,11 @@
 
 namespace boomdyn {
 
+// First-order states (LuGre friction z) are unknowns too, but their rate
+// follows from x with their own coefficient: zdot = vc + cZ x (backward Euler
+// in dynamics: cZ = 1/h).
 struct Kinematics {
-  double cQ = 1, cV = 0, cA = 0;
+  double cQ = 1, cV = 0, cA = 0, cZ = 0;
 };
 
 struct AssemblyContext {

@@ -530,6 +530,7 @@ private:
                                  std::map<std::string, std::string> &taken) const;
   PointForceSpec parseLoad(const Field &f, std::size_t index, const Scene &scene,
                            std::map<std::string, std::string> &taken) const;
+  FrictionSpec parseFriction(const Field &f) const;
   PointMassSpec parseMass(const Field &f, std::size_t index, const Scene &scene,
                           std::map<std::string, std::string> &taken) const;
   DynamicSpec parseDynamic(const Field &f) const;
@@ -697,7 +698,7 @@ ConstraintSpec SceneParser::parseConstraint(const Field &f, std::size_t index, c
 {
   const MapView m(report_, f,
                   {"type", "name", "body", "at", "point", "angle", "other", "other_at", "track", "joint", "displacement",
-                   "from", "from_at", "pulley", "pulley_at", "to", "to_at", "length"});
+                   "from", "from_at", "pulley", "pulley_at", "to", "to_at", "length", "friction"});
   const std::vector<std::string> types{"clamp", "pin", "angle_drive", "sliding_joint", "extraction_drive", "rope"};
   const std::size_t type = choice(m.require("type", " (one of " + join(types) + ")"), types);
   ConstraintSpec c;
@@ -707,8 +708,10 @@ ConstraintSpec SceneParser::parseConstraint(const Field &f, std::size_t index, c
   c.type = kinds[type];
   c.mark = report_.sourceMark(f);
   c.name = itemName(m, taken, "constraint", types[type] + std::to_string(index));
-  if (c.type != ConstraintSpec::Type::SlidingJoint)
+  if (c.type != ConstraintSpec::Type::SlidingJoint) {
     m.forbid("track", "only allowed for a sliding_joint");
+    m.forbid("friction", "only allowed for a sliding_joint");
+  }
   if (c.type != ConstraintSpec::Type::ExtractionDrive) {
     m.forbid("joint", "only allowed for an extraction_drive");
     m.forbid("displacement", "only allowed for an extraction_drive");
@@ -750,6 +753,7 @@ ConstraintSpec SceneParser::parseConstraint(const Field &f, std::size_t index, c
     c.track = body(track, scene).name;
     if (c.track == c.a.body)
       report_.fail(track, "must name another body than 'body' ('" + c.a.body + "')");
+    if (const auto fr = m.get("friction")) c.friction = parseFriction(*fr);
     return c;
   }
 
@@ -794,6 +798,23 @@ ConstraintSpec SceneParser::parseConstraint(const Field &f, std::size_t index, c
   if (c.type != ConstraintSpec::Type::Pin)
     c.angle = m.has("angle") ? angleFunction(*m.get("angle")) : TimeFunction::constant(a.angle);
   return c;
+}
+
+// LuGre parameters of a sliding joint (model.md §3); defaults in scene.hpp.
+FrictionSpec SceneParser::parseFriction(const Field &f) const
+{
+  const MapView m(report_, f, {"mu_s", "mu_c", "v_s", "alpha", "sigma0", "sigma1", "sigma2"});
+  FrictionSpec fr;
+  const Field mu_s = m.require("mu_s"), mu_c = m.require("mu_c");
+  fr.mu_s = positive(mu_s);
+  fr.mu_c = positive(mu_c);
+  if (fr.mu_c > fr.mu_s) report_.fail(mu_c, "must be <= mu_s (" + fmt(fr.mu_s) + "): kinetic friction above static");
+  if (const auto v = m.get("v_s")) fr.v_s = positive(*v);
+  if (const auto a = m.get("alpha")) fr.alpha = positive(*a);
+  if (const auto s0 = m.get("sigma0")) fr.sigma0 = positive(*s0);
+  if (const auto s1 = m.get("sigma1")) fr.sigma1 = nonNegative(*s1);
+  if (const auto s2 = m.get("sigma2")) fr.sigma2 = nonNegative(*s2);
+  return fr;
 }
 
 PointForceSpec SceneParser::parseLoad(const Field &f, std::size_t index, const Scene &scene,

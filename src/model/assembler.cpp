@@ -98,6 +98,11 @@ PetscErrorCode Assembler::buildPattern()
   PetscCall(VecScatterCreate(xTemplate_, is, xLocal_, nullptr, &scatter_));
   PetscCall(ISDestroy(&is));
   qc_.assign(nloc, 0.0), vc_.assign(nloc, 0.0), ac_.assign(nloc, 0.0);
+  firstOrder_.assign(nloc, 0);
+  for (PetscInt g : model_.firstOrderCoordinates()) {
+    const auto it = localOf.find(g);
+    if (it != localOf.end()) firstOrder_[it->second] = 1;
+  }
   q_.assign(nloc, 0.0), v_.assign(nloc, 0.0), a_.assign(nloc, 0.0);
   for (auto *b : {&bq_, &bv_, &ba_, &bl_, &br_}) b->assign(maxN, 0.0);
   bJ_.assign(maxN * maxN, 0.0);
@@ -158,7 +163,7 @@ PetscErrorCode Assembler::scatterAndMap(const AssemblyContext &ctx, Vec x)
   const Kinematics &k = ctx.kin;
   for (std::size_t i = 0; i < q_.size(); ++i) {
     q_[i] = qc_[i] + k.cQ * xl[i];
-    v_[i] = vc_[i] + k.cV * xl[i];
+    v_[i] = vc_[i] + (firstOrder_[i] ? k.cZ : k.cV) * xl[i];
     a_[i] = ac_[i] + k.cA * xl[i];
   }
   // Multiplier entries are read from xLocal_ directly (gather); keep a copy in bl_ per item.

@@ -3,6 +3,7 @@
 #include "boomdyn/ancf_beam.hpp"
 #include "boomdyn/angle_drive.hpp"
 #include "boomdyn/beam_element_item.hpp"
+#include "boomdyn/lugre_friction.hpp"
 #include "boomdyn/pin.hpp"
 #include "boomdyn/rigid_body.hpp"
 #include "boomdyn/rope.hpp"
@@ -73,6 +74,15 @@ Model::Model(const Scene &scene) : scene_(scene)
     s0Of[k] = s0;
     slackInitial_.push_back({slackOf[k], s0});
   }
+  // One first-order friction state z per frictional sliding joint, after the
+  // slack coordinates (so that every coordinate is numbered before the rows).
+  std::vector<PetscInt> frictionStateOf(scene.constraints.size(), -1);
+  for (std::size_t k = 0; k < scene.constraints.size(); ++k)
+    if (scene.constraints[k].type == ConstraintSpec::Type::SlidingJoint && scene.constraints[k].friction) {
+      frictionStateOf[k] = nq_++;
+      firstOrder_.push_back(frictionStateOf[k]);
+      frictionJoints_.push_back(scene.constraints[k].name);
+    }
   for (std::size_t k = 0; k < scene.constraints.size(); ++k) {
     const ConstraintSpec &c = scene.constraints[k];
     const Body *a = c.type == ConstraintSpec::Type::ExtractionDrive ? nullptr : findBody(c.a.body);
@@ -105,6 +115,9 @@ Model::Model(const Scene &scene) : scene_(scene)
       auto joint = std::make_shared<SlidingJoint>(c.name, *findBody(c.track), *a, c.a.s, slackOf[k], s0Of[k]);
       slidingJoints_.push_back(joint);
       addConstraint(joint, c.mark);
+      if (c.friction) // lambda_n is the joint's second row
+        items_.push_back(std::make_unique<LuGreFriction>(joint, frictionStateOf[k], constraints_.back()->firstRow() + 1,
+                                                          *c.friction));
       break;
     }
     case ConstraintSpec::Type::Pin:

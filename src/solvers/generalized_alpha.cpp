@@ -33,6 +33,52 @@ PetscErrorCode GeneralizedAlpha::setUp(PetscInt maxNewton)
   PetscFunctionReturn(0);
 }
 
+// Applies op(local index, q_n, vc, x) to the owned first-order entries.
+template <class Op>
+PetscErrorCode GeneralizedAlpha::forFirstOrder(Op op)
+{
+  PetscInt lo, hi;
+  const PetscScalar *q;
+  PetscScalar *vc, *x;
+  PetscFunctionBeginUser;
+  if (assembler_.model().firstOrderCoordinates().empty()) PetscFunctionReturn(0);
+  PetscCall(VecGetOwnershipRange(q_, &lo, &hi));
+  PetscCall(VecGetArrayRead(q_, &q));
+  PetscCall(VecGetArray(vc_, &vc));
+  PetscCall(VecGetArray(x_, &x));
+  for (PetscInt g : assembler_.model().firstOrderCoordinates())
+    if (g >= lo && g < hi) op(g - lo, q, vc, x);
+  PetscCall(VecRestoreArray(x_, &x));
+  PetscCall(VecRestoreArray(vc_, &vc));
+  PetscCall(VecRestoreArrayRead(q_, &q));
+  PetscFunctionReturn(0);
+}
+
+// Applies op(local index, q_n, x_{n+1}, v, a, qdd) to the owned first-order entries.
+template <class Op>
+PetscErrorCode GeneralizedAlpha::forFirstOrderState(Op op)
+{
+  PetscInt lo, hi;
+  const PetscScalar *q, *x;
+  PetscScalar *v, *a, *qdd;
+  PetscFunctionBeginUser;
+  if (assembler_.model().firstOrderCoordinates().empty()) PetscFunctionReturn(0);
+  PetscCall(VecGetOwnershipRange(q_, &lo, &hi));
+  PetscCall(VecGetArrayRead(q_, &q));
+  PetscCall(VecGetArrayRead(x_, &x));
+  PetscCall(VecGetArray(v_, &v));
+  PetscCall(VecGetArray(a_, &a));
+  PetscCall(VecGetArray(qdd_, &qdd));
+  for (PetscInt g : assembler_.model().firstOrderCoordinates())
+    if (g >= lo && g < hi) op(g - lo, q, x, v, a, qdd);
+  PetscCall(VecRestoreArray(qdd_, &qdd));
+  PetscCall(VecRestoreArray(a_, &a));
+  PetscCall(VecRestoreArray(v_, &v));
+  PetscCall(VecRestoreArrayRead(x_, &x));
+  PetscCall(VecRestoreArrayRead(q_, &q));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode GeneralizedAlpha::initialize(double t0, Vec q0, Vec v0)
 {
   PetscInt its;
@@ -92,10 +138,15 @@ PetscErrorCode GeneralizedAlpha::step(double h, StepResult *result)
     // applied load) over a whole step and starts Newton far from the solution.
     PetscCall(VecWAXPY(x_, h, v_, q_));
     PetscCall(assembler_.copyMultipliers(lambda_, x_, 1.0 / sigma));
+    // First-order states (LuGre z): backward Euler, zdot = (z - z_n)/h, from z_n.
+    PetscCall(forFirstOrder([&](PetscInt i, const PetscScalar *q, PetscScalar *vc, PetscScalar *x) {
+      vc[i] = -q[i] / h;
+      x[i] = q[i];
+    }));
 
     newton_.ctx = AssemblyContext{};
     newton_.ctx.t = t_ + h;
-    newton_.ctx.kin = {1.0, gammaP, betaP};
+    newton_.ctx.kin = {1.0, gammaP, betaP, 1.0 / h};
     newton_.ctx.sigma = sigma;
     PetscCall(assembler_.setOffsets(nullptr, vc_, ac_));
     PetscCall(newton_.solve(x_, &result->iterations, &result->reason));
@@ -112,6 +163,12 @@ PetscErrorCode GeneralizedAlpha::step(double h, StepResult *result)
     PetscCall(VecScale(a_, 1.0 / h2b));
     PetscCall(VecWAXPY(qdd_, betaP, x_, ac_));
     PetscCall(VecWAXPY(v_, gammaP, x_, vc_));
+    // First-order states: rate from backward Euler; no accelerations.
+    PetscCall(forFirstOrderState([&](PetscInt i, const PetscScalar *qn, const PetscScalar *x, PetscScalar *v, PetscScalar *a,
+                                     PetscScalar *qdd) {
+      v[i] = (x[i] - qn[i]) / h;
+      a[i] = qdd[i] = 0.0;
+    }));
     PetscCall(VecCopy(x_, q_));
     PetscCall(assembler_.copyMultipliers(x_, lambda_, sigma));
     t_ += h;

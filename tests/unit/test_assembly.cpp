@@ -27,6 +27,9 @@ bodies:
     elements: 2
     origin: [1.0, 0.0]
     section: {EA: 5.0e6, EI: 1.0e4, rhoA: 8.0}
+  - {name: rail, type: rigid, length: 1.5, origin: [0, -0.5], angle: 10, section: {rhoA: 4.0}}
+  - {name: block, type: rigid, length: 0.3, origin: [0.49240387650610395, -0.41317591116653485], angle: 10, section: {rhoA: 6.0}}
+  - {name: sled, length: 0.6, elements: 2, origin: [0.9, 0.0], section: {EA: 2.0e6, EI: 3.0e3, rhoA: 5.0}}
 constraints:
   - type: clamp
     body: a
@@ -37,6 +40,21 @@ constraints:
     at: end
     other: b
     other_at: 0.0
+  - {type: clamp, body: rail, at: start}
+  - type: sliding_joint
+    name: rub
+    body: block
+    at: start
+    track: rail
+    friction: {mu_s: 0.3, mu_c: 0.2, v_s: 0.05, alpha: 2, sigma0: 1.0e4, sigma1: 30, sigma2: 2}
+  - {type: sliding_joint, name: rub2, body: block, at: end, track: rail}
+  - {type: clamp, body: sled, at: start}
+  - type: sliding_joint
+    name: beamrub
+    body: b
+    at: 0.1
+    track: sled
+    friction: {mu_s: 0.2, mu_c: 0.1, v_s: 0.01, alpha: 1.5, sigma0: 1.0e3, sigma1: 5}
 loads:
   - type: point_force
     body: b
@@ -158,6 +176,7 @@ TEST_P(AssembledJacobian, MatchesCentralDifferencesOfResidual)
 }
 
 INSTANTIATE_TEST_SUITE_P(Modes, AssembledJacobian,
-                         ::testing::Values(Mode{"dynamic", {1.0, 2e3, 4e6}, false}, Mode{"static", {1.0, 0.0, 0.0}, false},
-                                           Mode{"acceleration", {0.0, 0.0, 1.0}, true}),
+                         ::testing::Values(Mode{"dynamic", {1.0, 2e3, 4e6, 1e3}, false},
+                                           Mode{"static", {1.0, 0.0, 0.0, 0.0}, false},
+                                           Mode{"acceleration", {0.0, 0.0, 1.0, 0.0}, true}),
                          [](const auto &info) { return std::string(info.param.name); });

@@ -1,0 +1,46 @@
+// LuGre friction at a sliding joint (model.md §3) as a work item: the
+// friction force F_t = (sigma0 z + sigma1 zdot) |lambda_n| + sigma2 v_r acts
+// along -i on the track at the contact point and along +i on the slider, and
+// the bristle state z obeys
+//     zdot = v_r - sigma0 |v_r| z / g(v_r),   g = mu_c + (mu_s - mu_c) exp(-|v_r/v_s|^alpha),
+// with v_r = i . (velocity of the track's material point - slider's). z is an
+// unknown of the same Newton system (first-order, backward Euler in
+// dynamics); its row is scaled like the mechanical rows. The Jacobian,
+// including the dependence on lambda_n, s and the velocities, is exact: it is
+// computed by forward-mode automatic differentiation on top of the bodies'
+// exact centerline derivatives.
+//
+// Modes: dynamics (cZ > 0) integrate z; at acceleration level (initial
+// conditions) zdot is the law's value; statics and the eigen pencil freeze z
+// (its row is the identity).
+#pragma once
+
+#include "boomdyn/scene.hpp"
+#include "boomdyn/sliding_joint.hpp"
+#include "boomdyn/work_item.hpp"
+
+#include <memory>
+
+namespace boomdyn {
+
+class LuGreFriction : public WorkItem {
+public:
+  LuGreFriction(std::shared_ptr<const SlidingJoint> joint, PetscInt zIndex, PetscInt normalRow, const FrictionSpec &spec);
+  std::string name() const override { return joint_->name() + ".friction"; }
+  void coordinates(std::vector<PetscInt> &dofs) const override;
+  void multiplierRows(std::vector<PetscInt> &rows) const override { rows.assign(1, normalRow_); }
+  void evaluate(const AssemblyContext &ctx, const ItemValues &in, double *residual, double *J) const override;
+
+  // Stribeck curve g(v) (dimensionless) and the steady-sliding force per unit
+  // normal force and the viscous part: g(v) sign(v) |lambda_n| + sigma2 v.
+  double stribeck(double v) const;
+  PetscInt stateIndex() const { return z_; }
+  const FrictionSpec &spec() const { return spec_; }
+
+private:
+  std::shared_ptr<const SlidingJoint> joint_;
+  PetscInt z_, normalRow_;
+  FrictionSpec spec_;
+};
+
+} // namespace boomdyn
