@@ -4,6 +4,7 @@
 #include "support.hpp"
 
 #include <cmath>
+#include <cstdlib>
 
 using namespace boomdyn;
 using namespace boomdyn::testing;
@@ -91,4 +92,139 @@ TEST(LuGre, PreslidingStaysBoundedBelowStaticFriction)
   EXPECT_GT(slip, 0.0);
   EXPECT_LT(slip, bound);
   EXPECT_LT(lateSpeed, 1e-5) << "no sliding";
+}
+
+namespace {
+
+// Block on a rail that rotates about its base, theta(t) = theta_max sin^2(pi t / T).
+constexpr double kThetaMax = 10.5 * M_PI / 180.0, kPeriod = 4.0, kG = 9.81, kCentre0 = 2.2, kMass = 10.0;
+
+double theta(double t) { return kThetaMax * std::pow(std::sin(M_PI * t / kPeriod), 2); }
+double thetaRate(double t) { return kThetaMax * (M_PI / kPeriod) * std::sin(2 * M_PI * t / kPeriod); }
+double thetaAccel(double t) { return kThetaMax * 2 * std::pow(M_PI / kPeriod, 2) * std::cos(2 * M_PI * t / kPeriod); }
+
+struct SlideSummary {
+  double start = -1, stop = -1, distance = 0;
+};
+
+// Measures from a history of the block centre's coordinate along the rail.
+SlideSummary summarize(const std::vector<double> &t, const std::vector<double> &s)
+{
+  SlideSummary out;
+  out.distance = s.back() - s.front();
+  for (std::size_t k = 0; k < t.size(); ++k)
+    if (out.start < 0 && std::abs(s[k] - s.front()) > 1e-3) out.start = t[k];
+  for (std::size_t k = t.size(); k-- > 0;)
+    if (std::abs(s[k] - s.back()) > 1e-3) {
+      out.stop = t[k];
+      break;
+    }
+  return out;
+}
+
+// Coulomb reference: point mass at the block centre in polar coordinates,
+// m (s'' - s theta'^2) = -m g sin(theta) + F,  N = m (g cos(theta) + s theta'' + 2 s' theta'),
+// stick while |F| <= mu_s N, slip with F = -mu_c N sign(s'). RK4, dt = 1e-5.
+SlideSummary coulomb(double tEnd, std::vector<double> &ts, std::vector<double> &ss)
+{
+  double s = kCentre0, v = 0, t = 0;
+  bool stuck = true;
+  const double dt = 1e-5;
+  auto accel = [&](double tt, double sv, double vv) {
+    const double N = kG * std::cos(theta(tt)) + sv * thetaAccel(tt) + 2 * vv * thetaRate(tt);
+    const double sign = vv > 0 ? 1.0 : -1.0;
+    return -kG * std::sin(theta(tt)) + sv * thetaRate(tt) * thetaRate(tt) - kMuC * N * sign;
+  };
+  while (t < tEnd) {
+    if (stuck) {
+      const double N = kG * std::cos(theta(t)) + s * thetaAccel(t);
+      const double needed = kG * std::sin(theta(t)) - s * thetaRate(t) * thetaRate(t); // friction per mass to stick
+      if (std::abs(needed) > kMuS * N) {
+        stuck = false;
+        v = needed > 0 ? -1e-12 : 1e-12; // start sliding down (or up) the slope
+      }
+    }
+    if (!stuck) {
+      const double k1v = accel(t, s, v), k1s = v;
+      const double k2v = accel(t + dt / 2, s + dt / 2 * k1s, v + dt / 2 * k1v), k2s = v + dt / 2 * k1v;
+      const double k3v = accel(t + dt / 2, s + dt / 2 * k2s, v + dt / 2 * k2v), k3s = v + dt / 2 * k2v;
+      const double k4v = accel(t + dt, s + dt * k3s, v + dt * k3v), k4s = v + dt * k3v;
+      const double vNew = v + dt / 6 * (k1v + 2 * k2v + 2 * k3v + k4v);
+      s += dt / 6 * (k1s + 2 * k2s + 2 * k3s + k4s);
+      if (vNew * v < 0) stuck = true, v = 0; // velocity returned to zero
+      else v = vNew;
+    }
+    t += dt;
+    if (ts.empty() || t - ts.back() >= 1e-3 - 1e-12) ts.push_back(t), ss.push_back(s);
+  }
+  return summarize(ts, ss);
+}
+
+} // namespace
+
+// The Stribeck velocity is small (1e-4 m/s) because it sets a floor of its
+// own: after breakaway the LuGre force stays near mu_s until the speed
+// exceeds v_s, which delays the slide by about sqrt(v_s / (the rate of the
+// net acceleration)) compared with Coulomb (v_s = 1e-3 m/s gave 16 ms).
+TEST(LuGre, BlockOnTiltingInclineApproachesCoulombAsSigma0Grows)
+{
+  const double tEnd = 4.5;
+  std::vector<double> tc, sc;
+  const SlideSummary ref = coulomb(tEnd, tc, sc);
+  ASSERT_GT(ref.start, 0) << "the reference block must slide";
+  PetscPrintf(PETSC_COMM_WORLD, "  Coulomb: slides from t = %.4f s (tan theta = mu_s at %.4f s) to %.4f s, distance %.5f m\n",
+              ref.start, kPeriod / M_PI * std::asin(std::sqrt(std::atan(kMuS) / kThetaMax)), ref.stop, ref.distance);
+  double previous = 1e300;
+  const double sigma1Factor = std::getenv("BOOMDYN_SIGMA1") ? std::atof(std::getenv("BOOMDYN_SIGMA1")) : 0.0;
+  auto sigma1 = [&](double sigma0) { return sigma1Factor * std::sqrt(sigma0); };
+  const double dt = std::getenv("BOOMDYN_INCLINE_DT") ? std::atof(std::getenv("BOOMDYN_INCLINE_DT")) : 1e-3;
+  for (double sigma0 : {1e3, 1e4, 1e5, 1e6}) {
+    char text[4096];
+    std::snprintf(text, sizeof text, R"(
+name: tilting-incline
+analysis: dynamic
+gravity: [0, -9.81]
+bodies:
+  - {name: rail, type: rigid, length: 4.0, section: {rhoA: 10.0}}
+  - {name: block, type: rigid, length: 0.4, origin: [2.0, 0.0], section: {rhoA: 25.0}}
+constraints:
+  - type: clamp
+    body: rail
+    at: start
+    angle: {type: sine, amplitude: %.12g, frequency: %.12g, phase: -90, offset: %.12g}
+  - type: sliding_joint
+    name: rear
+    body: block
+    at: start
+    track: rail
+    friction: {mu_s: %g, mu_c: %g, v_s: 1.0e-4, alpha: 2, sigma0: %g, sigma1: %g}
+  - type: sliding_joint
+    name: front
+    body: block
+    at: end
+    track: rail
+    friction: {mu_s: %g, mu_c: %g, v_s: 1.0e-4, alpha: 2, sigma0: %g, sigma1: %g}
+dynamic: {t_end: %g, dt: %g, rho_inf: 0.8}
+)",
+                  kThetaMax * 90 / M_PI, 1.0 / kPeriod, kThetaMax * 90 / M_PI, kMuS, kMuC, sigma0,
+                  sigma1(sigma0), kMuS, kMuC, sigma0, sigma1(sigma0), tEnd, dt);
+    const DynamicHistory run = runDynamic(parseScene(text, "tilting-incline.yaml"));
+    ASSERT_TRUE(run.summary.completed) << run.summary.failure;
+    std::vector<double> s;
+    for (const auto &row : run.slacks) s.push_back(row[0] + 0.2);
+    const SlideSummary lu = summarize(run.time, s);
+    const double error = std::abs(lu.start - ref.start) + std::abs(lu.stop - ref.stop) +
+                         std::abs(lu.distance - ref.distance) / std::abs(ref.distance);
+    PetscPrintf(PETSC_COMM_WORLD,
+                "  sigma0 = %.0e 1/m: slides %.4f -> %.4f s, distance %.5f m; errors: start %.1e s, stop %.1e s, distance %.1e (relative); %d steps, %d rejected\n",
+                sigma0, lu.start, lu.stop, lu.distance, lu.start - ref.start, lu.stop - ref.stop,
+                (lu.distance - ref.distance) / std::abs(ref.distance), (int)run.summary.steps, (int)run.summary.rejected);
+    EXPECT_LT(error, previous) << "the error must shrink as sigma0 grows";
+    previous = error;
+    if (sigma0 >= 1e6) {
+      EXPECT_LT(std::abs(lu.start - ref.start), 0.02);
+      EXPECT_LT(std::abs(lu.stop - ref.stop), 0.02);
+      EXPECT_LT(std::abs(lu.distance - ref.distance) / std::abs(ref.distance), 0.02);
+    }
+  }
 }
