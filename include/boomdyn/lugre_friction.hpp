@@ -19,6 +19,7 @@
 #include "boomdyn/sliding_joint.hpp"
 #include "boomdyn/work_item.hpp"
 
+#include <cmath>
 #include <memory>
 
 namespace boomdyn {
@@ -35,6 +36,13 @@ public:
   // normal force and the viscous part: g(v) sign(v) |lambda_n| + sigma2 v.
   double stribeck(double v) const;
   PetscInt stateIndex() const { return z_; }
+  PetscInt normalRow() const { return normalRow_; }
+  const SlidingJoint &joint() const { return *joint_; }
+  // Friction force F_t (N) from the state z, its rate, |lambda_n| and v_r.
+  double force(double z, double zdot, double lambdaN, double vr) const
+  {
+    return (spec_.sigma0 * z + spec_.sigma1 * zdot) * std::abs(lambdaN) + spec_.sigma2 * vr;
+  }
   const FrictionSpec &spec() const { return spec_; }
 
 private:

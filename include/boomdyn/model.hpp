@@ -50,6 +50,8 @@ public:
   // Coordinates that are first-order states (LuGre z), with their joints' names.
   const std::vector<PetscInt> &firstOrderCoordinates() const { return firstOrder_; }
   const std::vector<std::string> &frictionJointNames() const { return frictionJoints_; }
+  // The friction elements, in the order of frictionJointNames().
+  const std::vector<const class LuGreFriction *> &frictions() const { return frictions_; }
   const Scene &scene() const { return scene_; }
   // Initial coordinates (undeformed bodies as placed in the scene), size nq.
   std::vector<double> initialCoordinates() const;
@@ -69,6 +71,7 @@ private:
   std::vector<std::pair<PetscInt, double>> slackInitial_; // (slack coordinate, initial s)
   std::vector<PetscInt> firstOrder_;
   std::vector<std::string> frictionJoints_;
+  std::vector<const class LuGreFriction *> frictions_;
 };
 
 } // namespace boomdyn

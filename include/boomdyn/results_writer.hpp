@@ -8,6 +8,7 @@
 #include "boomdyn/hdf5_file.hpp"
 #include "boomdyn/model.hpp"
 #include "boomdyn/sensors.hpp"
+#include "boomdyn/stick_slip.hpp"
 
 #include <petscvec.h>
 
@@ -40,6 +41,9 @@ public:
   // Full state snapshot; lambda holds unscaled multipliers in its last entries.
   PetscErrorCode appendState(double t, Vec q, Vec v, Vec lambda);
   PetscErrorCode writeModes(double t, const ModalResult &modes);
+  // Friction readings of one step, and stick/slip events as they happen.
+  PetscErrorCode appendFriction(const std::vector<FrictionReading> &readings);
+  PetscErrorCode appendEvents(const std::vector<StickSlipEvent> &events);
   // One row of frequency tracking; with the tracked shape when writeShape.
   PetscErrorCode appendTracking(const TrackedModes &modes, bool writeShape);
   PetscErrorCode finish(const std::string &status, PetscInt steps, PetscInt rejected, double wallTime,
@@ -62,6 +66,7 @@ private:
   VecScatter toZero_ = nullptr;
   Vec gathered_ = nullptr;
   PetscInt slackRopeSteps_ = 0;
+  long long eventCount_ = 0;
   std::chrono::steady_clock::time_point lastFlush_ = std::chrono::steady_clock::now();
 };
 

@@ -56,6 +56,7 @@ struct FrictionSpec {
   double sigma0 = 1e5;            // bristle stiffness per unit normal force, 1/m
   double sigma1 = 0.0;            // bristle damping per unit normal force, s/m
   double sigma2 = 0.0;            // viscous friction, N s/m
+  double stick_velocity = -1;     // |v_r| below it counts as stick in the output, m/s (< 0: v_s / 10)
 };
 
 struct ConstraintSpec {

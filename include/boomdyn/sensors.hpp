@@ -28,6 +28,8 @@ public:
   // Slack coordinates of the sliding joints (from q) and all unscaled
   // multipliers (from lambda, layout of x), on rank 0.
   PetscErrorCode readJoints(Vec q, Vec lambda, std::vector<double> &slacks, std::vector<double> &multipliers);
+  // Per frictional joint: s, ds/dt, z, dz/dt, lambda_n (rank 0).
+  PetscErrorCode readFriction(Vec q, Vec v, Vec lambda, std::vector<double> &values);
   // Moving-frame deflections of the scene's frame sensors (rank 0).
   PetscErrorCode readFrames(Vec q, std::vector<double> &deflections);
 
@@ -35,7 +37,9 @@ private:
   const Model &model_;
   std::vector<CenterlineLocation> locations_;
   VecScatter scatter_ = nullptr, slackScatter_ = nullptr, lambdaScatter_ = nullptr, frameScatter_ = nullptr;
+  VecScatter frictionScatter_ = nullptr, normalScatter_ = nullptr;
   Vec gathered_ = nullptr, slacks_ = nullptr, multipliers_ = nullptr, frameValues_ = nullptr;
+  Vec frictionValues_ = nullptr, normalValues_ = nullptr;
   struct Frame {
     const Body *body;
     double s;        // material point measured

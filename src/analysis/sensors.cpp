@@ -1,14 +1,16 @@
 #include "boomdyn/sensors.hpp"
 
+#include "boomdyn/lugre_friction.hpp"
+
 #include <algorithm>
 
 namespace boomdyn {
 
 SensorProbe::~SensorProbe()
 {
-  for (VecScatter *sc : {&scatter_, &slackScatter_, &lambdaScatter_, &frameScatter_})
+  for (VecScatter *sc : {&scatter_, &slackScatter_, &lambdaScatter_, &frameScatter_, &frictionScatter_, &normalScatter_})
     if (*sc) (void)VecScatterDestroy(sc);
-  for (Vec *v : {&gathered_, &slacks_, &multipliers_, &frameValues_})
+  for (Vec *v : {&gathered_, &slacks_, &multipliers_, &frameValues_, &frictionValues_, &normalValues_})
     if (*v) (void)VecDestroy(v);
 }
 
@@ -64,6 +66,21 @@ PetscErrorCode SensorProbe::readFrames(Vec q, std::vector<double> &deflections)
   PetscFunctionReturn(0);
 }
 
+PetscErrorCode SensorProbe::readFriction(Vec q, Vec v, Vec lambda, std::vector<double> &values)
+{
+  std::vector<double> qs, vs, ln;
+  PetscFunctionBeginUser;
+  PetscCall(gatherTo(frictionScatter_, q, frictionValues_, qs));
+  PetscCall(gatherTo(frictionScatter_, v, frictionValues_, vs));
+  PetscCall(gatherTo(normalScatter_, lambda, normalValues_, ln));
+  values.clear();
+  for (std::size_t k = 0; k < ln.size(); ++k) {
+    const double row[5] = {qs[2 * k], vs[2 * k], qs[2 * k + 1], vs[2 * k + 1], ln[k]};
+    values.insert(values.end(), row, row + 5);
+  }
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode SensorProbe::readJoints(Vec q, Vec lambda, std::vector<double> &slacks, std::vector<double> &multipliers)
 {
   PetscFunctionBeginUser;
@@ -103,6 +120,14 @@ PetscErrorCode SensorProbe::setUp(Vec layout)
     frameIdx.push_back(slack);
   }
   PetscCall(scatterToRankZero(layout, rank_, frameIdx, &frameScatter_, &frameValues_));
+  std::vector<PetscInt> frictionIdx, normalIdx;
+  for (const LuGreFriction *f : model_.frictions()) {
+    frictionIdx.push_back(f->joint().slackIndex());
+    frictionIdx.push_back(f->stateIndex());
+    normalIdx.push_back(f->normalRow());
+  }
+  PetscCall(scatterToRankZero(layout, rank_, frictionIdx, &frictionScatter_, &frictionValues_));
+  PetscCall(scatterToRankZero(layout, rank_, normalIdx, &normalScatter_, &normalValues_));
   PetscFunctionReturn(0);
 }
 

@@ -11,6 +11,7 @@
 #include "boomdyn/rope.hpp"
 #include "boomdyn/sensors.hpp"
 #include "boomdyn/static_solver.hpp"
+#include "boomdyn/stick_slip.hpp"
 #include "boomdyn/time_stepper.hpp"
 #include "boomdyn/version.hpp"
 
@@ -137,6 +138,23 @@ PetscErrorCode runScene(const Scene &scene, const AppOptions &opts, int argc, ch
     PetscCall(out.appendState(0.0, integrator.positions(), integrator.velocities(), integrator.multipliers()));
     maxViolation = violation;
     double nextState = scene.output.state_interval;
+    // Stick/slip of frictional joints: readings every step, transitions as events.
+    StickSlipMonitor stickSlip(model);
+    std::vector<double> frictionValues;
+    std::vector<FrictionReading> frictionReadings;
+    auto recordFriction = [&](double t) -> PetscErrorCode {
+      PetscFunctionBeginUser;
+      if (model.frictions().empty()) PetscFunctionReturn(0);
+      PetscCall(sensors.readFriction(integrator.positions(), integrator.velocities(), integrator.multipliers(), frictionValues));
+      const std::vector<StickSlipEvent> events = stickSlip.update(t, frictionValues, frictionReadings);
+      PetscCall(out.appendFriction(frictionReadings));
+      PetscCall(out.appendEvents(events));
+      for (const StickSlipEvent &e : events)
+        PetscCall(PetscPrintf(PETSC_COMM_SELF, "event: t = %.4f s, joint '%s': %s (%s)\n", e.t, e.joint.c_str(),
+                              e.toSlip ? "stick -> slip" : "slip -> stick", e.direction > 0 ? "s decreasing" : "s increasing"));
+      PetscFunctionReturn(0);
+    };
+    PetscCall(recordFriction(0.0));
     // Frequency tracking: SLEPc only for scenes that ask for it.
     std::unique_ptr<FrequencyTracker> tracker;
     double nextTrack = 0.0;
@@ -175,6 +193,7 @@ PetscErrorCode runScene(const Scene &scene, const AppOptions &opts, int argc, ch
         PetscCall(out.appendState(s.t, integrator.positions(), integrator.velocities(), integrator.multipliers()));
         while (scene.output.state_interval > 0 && nextState <= s.t + 1e-9 * s.h) nextState += scene.output.state_interval;
       }
+      PetscCall(recordFriction(s.t));
       PetscCall(track(s.t, s.h));
       PetscCall(progress.update(s.step, s.t, s.h, s.iterations, s.rejected));
       PetscFunctionReturn(0);
@@ -193,6 +212,12 @@ PetscErrorCode runScene(const Scene &scene, const AppOptions &opts, int argc, ch
                             "constraint violation %.2e, %.2f s\n",
                             status.c_str(), steps, rejected, steps ? (double)summary.newtonIterations / steps : 0.0,
                             maxViolation, progress.elapsed()));
+    if (!model.frictions().empty() && !opts.quiet) {
+      PetscCall(PetscPrintf(PETSC_COMM_WORLD, "stick/slip events: %zu\n", stickSlip.events().size()));
+      for (const StickSlipEvent &e : stickSlip.events())
+        PetscCall(PetscPrintf(PETSC_COMM_SELF, "  t = %8.4f s  %-12s %s (%s)\n", e.t, e.joint.c_str(),
+                              e.toSlip ? "stick -> slip" : "slip -> stick", e.direction > 0 ? "s decreasing" : "s increasing"));
+    }
     if (summary.completed && scene.modal.count > 0) {
       Vec q = scene.modal.at == "start" ? x : integrator.positions();
       PetscCall(modalAnalysis(assembler, out, scene.modal.at == "start" ? 0.0 : integrator.time(), q,

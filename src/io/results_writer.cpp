@@ -3,6 +3,7 @@
 #include "boomdyn/log_events.hpp"
 #include "boomdyn/rope.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <ctime>
 #include <stdexcept>
@@ -83,6 +84,8 @@ PetscErrorCode ResultsWriter::open(const std::string &path, bool overwrite, cons
       for (const ConstraintItem *c : model_.constraints())
         if (dynamic_cast<const Rope *>(&c->constraint())) ropes.push_back(c->name());
       if (!ropes.empty()) file_->writeStrings("/layout/rope_names", ropes);
+      if (!model_.frictionJointNames().empty())
+        file_->writeStrings("/layout/friction_joint_names", model_.frictionJointNames());
       std::vector<std::string> frames;
       for (const FrameSensorSpec &f : sc.output.frames) frames.push_back(f.name);
       if (!frames.empty()) file_->writeStrings("/layout/frame_names", frames);
@@ -234,6 +237,42 @@ void ResultsWriter::writeModeArrays(double t, const ModalResult &modes)
   file_->flush();
 }
 
+PetscErrorCode ResultsWriter::appendFriction(const std::vector<FrictionReading> &readings)
+{
+  PetscFunctionBeginUser;
+  PetscCall(onRankZero(comm_, rank_, [&] {
+    if (readings.empty()) return;
+    std::vector<double> v, vf, f, z;
+    std::vector<int> st;
+    for (const FrictionReading &r : readings)
+      v.push_back(r.slipVelocity), vf.push_back(r.filteredSlipVelocity), f.push_back(r.force), z.push_back(r.z),
+        st.push_back(r.slipping);
+    file_->appendRow("/steps/friction_slip_velocity", v.data(), v.size());
+    file_->appendRow("/steps/friction_slip_velocity_filtered", vf.data(), vf.size());
+    file_->appendRow("/steps/friction_force", f.data(), f.size());
+    file_->appendRow("/steps/friction_z", z.data(), z.size());
+    file_->appendRow("/steps/friction_slipping", st.data(), st.size());
+  }));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ResultsWriter::appendEvents(const std::vector<StickSlipEvent> &events)
+{
+  PetscFunctionBeginUser;
+  PetscCall(onRankZero(comm_, rank_, [&] {
+    const auto &names = model_.frictionJointNames();
+    for (const StickSlipEvent &e : events) {
+      const int joint = static_cast<int>(std::find(names.begin(), names.end(), e.joint) - names.begin());
+      file_->appendScalar("/events/time", e.t);
+      file_->appendScalarInt("/events/joint", joint);
+      file_->appendScalarInt("/events/to_slip", e.toSlip ? 1 : 0);
+      file_->appendScalarInt("/events/direction", e.direction);
+      ++eventCount_;
+    }
+  }));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode ResultsWriter::appendTracking(const TrackedModes &m, bool writeShape)
 {
   PetscFunctionBeginUser;
@@ -264,6 +303,8 @@ PetscErrorCode ResultsWriter::finish(const std::string &status, PetscInt steps, 
     file_->setAttribute("/summary", "wall_time_s", wallTime);
     file_->setAttribute("/summary", "max_constraint_violation", maxViolation);
     file_->setAttribute("/summary", "slack_rope_steps", static_cast<long long>(slackRopeSteps_));
+    if (!model_.frictionJointNames().empty())
+      file_->setAttribute("/summary", "stick_slip_events", static_cast<long long>(eventCount_));
     file_->close();
   }));
   PetscFunctionReturn(0);

@@ -803,7 +803,7 @@ ConstraintSpec SceneParser::parseConstraint(const Field &f, std::size_t index, c
 // LuGre parameters of a sliding joint (model.md §3); defaults in scene.hpp.
 FrictionSpec SceneParser::parseFriction(const Field &f) const
 {
-  const MapView m(report_, f, {"mu_s", "mu_c", "v_s", "alpha", "sigma0", "sigma1", "sigma2"});
+  const MapView m(report_, f, {"mu_s", "mu_c", "v_s", "alpha", "sigma0", "sigma1", "sigma2", "stick_velocity"});
   FrictionSpec fr;
   const Field mu_s = m.require("mu_s"), mu_c = m.require("mu_c");
   fr.mu_s = positive(mu_s);
@@ -814,6 +814,8 @@ FrictionSpec SceneParser::parseFriction(const Field &f) const
   if (const auto s0 = m.get("sigma0")) fr.sigma0 = positive(*s0);
   if (const auto s1 = m.get("sigma1")) fr.sigma1 = nonNegative(*s1);
   if (const auto s2 = m.get("sigma2")) fr.sigma2 = nonNegative(*s2);
+  fr.stick_velocity = fr.v_s / 10;
+  if (const auto sv = m.get("stick_velocity")) fr.stick_velocity = positive(*sv);
   return fr;
 }
 

@@ -115,9 +115,12 @@ Model::Model(const Scene &scene) : scene_(scene)
       auto joint = std::make_shared<SlidingJoint>(c.name, *findBody(c.track), *a, c.a.s, slackOf[k], s0Of[k]);
       slidingJoints_.push_back(joint);
       addConstraint(joint, c.mark);
-      if (c.friction) // lambda_n is the joint's second row
-        items_.push_back(std::make_unique<LuGreFriction>(joint, frictionStateOf[k], constraints_.back()->firstRow() + 1,
-                                                          *c.friction));
+      if (c.friction) { // lambda_n is the joint's second row
+        auto friction = std::make_unique<LuGreFriction>(joint, frictionStateOf[k], constraints_.back()->firstRow() + 1,
+                                                        *c.friction);
+        frictions_.push_back(friction.get());
+        items_.push_back(std::move(friction));
+      }
       break;
     }
     case ConstraintSpec::Type::Pin:
