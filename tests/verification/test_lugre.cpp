@@ -229,3 +229,28 @@ dynamic: {t_end: %g, dt: %g, rho_inf: 0.8}
     }
   }
 }
+
+TEST(LuGre, StiffBristlesRunWithoutNewtonFailures)
+{
+  // sigma0 from 1e3 to 1e7 1/m at h = 1e-3: stick, breakaway and sliding of a
+  // block driven along a rail by a ramp that stops again. Backward Euler for z
+  // is L-stable, so the stiff bristle dynamics need no step cuts.
+  for (double sigma0 : {1e3, 1e4, 1e5, 1e6, 1e7}) {
+    const std::string drive = "  - {type: extraction_drive, name: drive, joint: rear, displacement: {type: smooth_step, "
+                              "t0: 0.1, t1: 0.6, from: 0, to: 0.05}}\ndynamic: {t_end: 0.8, dt: 1.0e-3, rho_inf: 0.8}\n";
+    const DynamicHistory run = runDynamic(parseScene(blockOnRail(sigma0, drive), "stiff-bristles.yaml"));
+    ASSERT_TRUE(run.summary.completed) << run.summary.failure;
+    double worst = 0;
+    for (const auto &m : run.multipliers) worst = std::max(worst, std::abs(m[kDrive]));
+    const bool finite = std::isfinite(worst);
+    PetscPrintf(PETSC_COMM_WORLD, "  sigma0 = %.0e 1/m: %d steps, %d rejected, %.2f Newton iterations/step, max drive force %.3f N\n",
+                sigma0, (int)run.summary.steps, (int)run.summary.rejected,
+                (double)run.summary.newtonIterations / run.summary.steps, worst);
+    EXPECT_TRUE(finite);
+    EXPECT_EQ(run.summary.rejected, 0) << "sigma0 = " << sigma0;
+    // Inertia of the 10 kg block at the drive's peak acceleration (quintic
+    // step: 5.77 d / T^2) plus the rear pad's static limit mu_s |lambda_n|.
+    const double bound = 10.0 * 5.7735 * 0.05 / 0.25 + kMuS * 49.05;
+    EXPECT_LT(worst, 1.01 * bound) << "bounded drive force";
+  }
+}
