@@ -99,6 +99,19 @@ struct PointMassSpec {
   SourceMark mark;
 };
 
+// Linear spring-damper from a material point to another body's point or to
+// a ground point.
+struct SpringSpec {
+  std::string name;
+  PointRef a;
+  std::optional<PointRef> b; // absent: to the ground point
+  Vec2d ground{0, 0};
+  double stiffness = 0;      // N/m
+  double restLength = -1;    // m; < 0: the initial distance
+  double damping = 0;        // N s/m
+  SourceMark mark;
+};
+
 struct SensorSpec {
   std::string name;
   PointRef at;
@@ -159,6 +172,7 @@ struct Scene {
   std::vector<ConstraintSpec> constraints;
   std::vector<PointForceSpec> forces;
   std::vector<PointMassSpec> masses;
+  std::vector<SpringSpec> springs;
   DynamicSpec dynamic;
   StaticSpec statics;
   ModalSpec modal;

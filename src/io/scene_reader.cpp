@@ -545,7 +545,7 @@ void SceneParser::parse(const Field &root, Scene &scene)
 {
   const MapView top(report_, root,
                     {"name", "description", "analysis", "gravity", "bodies", "constraints", "loads", "masses",
-                     "dynamic", "static", "modal", "tracking", "output"});
+                     "springs", "dynamic", "static", "modal", "tracking", "output"});
   scene.name = name(top.require("name"));
   if (const auto d = top.get("description"))
     scene.description = d->node.IsNull() ? "" : scalarText(*d, "a text");
@@ -605,6 +605,29 @@ void SceneParser::parse(const Field &root, Scene &scene)
   else if (const auto m = top.get("modal"))
     scene.modal = parseModal(*m, false);
 
+  if (const auto sp = top.get("springs")) {
+    std::map<std::string, std::string> taken;
+    const auto items = list(*sp);
+    for (std::size_t i = 0; i < items.size(); ++i) {
+      const MapView m(report_, items[i],
+                      {"name", "body", "at", "other", "other_at", "point", "stiffness", "rest_length", "damping"});
+      SpringSpec spring;
+      spring.mark = report_.sourceMark(items[i]);
+      spring.name = itemName(m, taken, "spring", "spring" + std::to_string(i));
+      spring.a = point(m, scene);
+      if (m.has("other")) {
+        m.forbid("point", "not allowed together with 'other' (the spring joins two bodies)");
+        spring.b = point(m, scene, "other", "other_at");
+      } else {
+        m.forbid("other_at", "only allowed together with 'other'");
+        spring.ground = vec2(m.require("point"));
+      }
+      spring.stiffness = positive(m.require("stiffness"));
+      if (const auto l = m.get("rest_length")) spring.restLength = nonNegative(*l);
+      if (const auto c = m.get("damping")) spring.damping = nonNegative(*c);
+      scene.springs.push_back(spring);
+    }
+  }
   if (const auto tr = top.get("tracking")) {
     if (scene.analysis != Scene::Analysis::Dynamic)
       report_.fail(*tr, "frequency tracking needs 'analysis: dynamic'");

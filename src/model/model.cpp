@@ -9,6 +9,7 @@
 #include "boomdyn/rope.hpp"
 #include "boomdyn/slack_drive.hpp"
 #include "boomdyn/sliding_joint.hpp"
+#include "boomdyn/spring.hpp"
 #include "boomdyn/point_load.hpp"
 
 #include <cmath>
@@ -144,6 +145,22 @@ Model::Model(const Scene &scene) : scene_(scene)
       throw ModelError(where(m.mark) + "point mass '" + m.name + "' on rigid body '" + m.at.body +
                        "': not supported; add its mass to the body's section instead");
     items_.push_back(std::make_unique<PointMass>(m.name, *findBody(m.at.body), m.at.s, m.mass, g));
+  }
+  for (const SpringSpec &sp : scene.springs) {
+    Spring::End a{findBody(sp.a.body), sp.a.s, Vec2::Zero()}, b{nullptr, 0.0, toVec(sp.ground)};
+    if (sp.b) b = Spring::End{findBody(sp.b->body), sp.b->s, Vec2::Zero()};
+    double rest = sp.restLength;
+    if (rest < 0) { // the initial distance
+      const Spring probe(sp.name, a, b, 1.0, 0.0, 0.0);
+      std::vector<PetscInt> dofs;
+      probe.coordinates(dofs);
+      std::vector<double> vals, zero(dofs.size(), 0.0);
+      for (PetscInt d : dofs) vals.push_back(q0[d]);
+      EnergyParts e;
+      probe.energy(AssemblyContext{}, ItemValues{vals.data(), zero.data(), zero.data(), nullptr}, e);
+      rest = std::sqrt(2.0 * e.strain); // with k = 1 and L0 = 0 the energy is l^2 / 2
+    }
+    items_.push_back(std::make_unique<Spring>(sp.name, a, b, sp.stiffness, rest, sp.damping));
   }
   for (const SensorSpec &s : scene.output.sensors) sensors_.push_back({s.name, findBody(s.at.body), s.at.s});
   checkInitialConfiguration();

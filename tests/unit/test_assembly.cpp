@@ -65,6 +65,9 @@ masses:
   - body: b
     at: end
     mass: 3.0
+springs:
+  - {body: a, at: 0.5, other: block, other_at: 0.1, stiffness: 300, damping: 2}
+  - {body: b, at: 0.4, point: [1.2, 0.3], stiffness: 500, rest_length: 0.1, damping: 1}
 dynamic: {t_end: 1.0, dt: 1.0e-3}
 )";
 
