@@ -1,7 +1,8 @@
 // Linear spring-damper between a material point a and a material point b of
 // another body, or a fixed ground point: tension T = k (l - L0) + c dl/dt
 // along the line between them (l = |r_a - r_b|), pulling the points together
-// when positive. Its Jacobian, on ANCF beams and rigid bodies, is computed by
+// when positive. With L0 = 0 it is the vector spring k (r_a - r_b) + c d/dt
+// (r_a - r_b), defined also where the points coincide. Its Jacobian, on ANCF beams and rigid bodies, is computed by
 // forward-mode automatic differentiation on the bodies' exact centerline
 // derivatives.
 #pragma once

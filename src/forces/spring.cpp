@@ -57,15 +57,23 @@ void Spring::evaluate(const AssemblyContext &ctx, const ItemValues &in, double *
     }
   }
   const AD dx = r[0][0] - r[1][0], dy = r[0][1] - r[1][1];
-  const AD l = sqrt(dx * dx + dy * dy);
-  const AD ux = dx / l, uy = dy / l;
-  const AD ldot = ux * (v[0][0] - v[1][0]) + uy * (v[0][1] - v[1][1]);
-  const AD tension = k_ * (l - L0_) + c_ * ldot;
+  AD fx, fy; // force pulling a towards b (and b towards a), times -1
+  if (L0_ == 0) {
+    // Zero rest length: the vector spring k d + c d', defined at d = 0 too.
+    fx = k_ * dx + c_ * (v[0][0] - v[1][0]);
+    fy = k_ * dy + c_ * (v[0][1] - v[1][1]);
+  } else {
+    const AD l = sqrt(dx * dx + dy * dy);
+    const AD ux = dx / l, uy = dy / l;
+    const AD ldot = ux * (v[0][0] - v[1][0]) + uy * (v[0][1] - v[1][1]);
+    const AD tension = k_ * (l - L0_) + c_ * ldot;
+    fx = tension * ux, fy = tension * uy;
+  }
   for (int e = 0; e < 2; ++e) {
     if (!ends_[e].body) continue;
     const double sign = e == 0 ? 1.0 : -1.0; // residual = -Q: +T u on a, -T u on b
     for (int m = 0; m < loc_[e].count; ++m) {
-      const AD rm = sign * tension * (rq[e][0][m] * ux + rq[e][1][m] * uy);
+      const AD rm = sign * (rq[e][0][m] * fx + rq[e][1][m] * fy);
       const int row = offset[e] + m;
       residual[row] += rm.value();
       if (J)

@@ -254,3 +254,101 @@ TEST(LuGre, StiffBristlesRunWithoutNewtonFailures)
     EXPECT_LT(worst, 1.01 * bound) << "bounded drive force";
   }
 }
+
+namespace {
+
+// Canudas de Wit, Olsson, Astrom & Lischinsky (1995): mass-spring on a moving
+// belt. m = 1 kg, k = 2 N/m, Fc = 1 N, Fs = 1.5 N, sigma0 = 1e5 N/m,
+// sigma1 = sqrt(1e5) N s/m, sigma2 = 0.4 N s/m, v_s = 1e-3 m/s, belt 0.1 m/s.
+// Here friction scales with |lambda_n| = m g: the coefficients are those
+// forces divided by m g; two pads share the block's weight and sigma2.
+struct BeltCycle {
+  double period = 0, peakForce = 0;
+  int cycles = 0;
+};
+
+BeltCycle belt(double h, double tEnd)
+{
+  // The drive moves the belt towards +x at 0.1 m/s, so the block's coordinate
+  // on the belt falls by about 0.1 m/s: it starts near the belt's far end.
+  const double N = 9.81, x0 = 4.6; // block centre at t = 0 (belt from x = 1 to 5, block from 4.5 to 4.7)
+  char text[4096];
+  std::snprintf(text, sizeof text, R"(
+name: lugre-belt
+analysis: dynamic
+gravity: [0, -9.81]
+bodies:
+  - {name: rail, type: rigid, length: 8.0, section: {rhoA: 1.0}}
+  - {name: belt, type: rigid, length: 4.0, origin: [1.0, 0], section: {rhoA: 1.0}}
+  - {name: block, type: rigid, length: 0.2, origin: [4.5, 0], section: {rhoA: 5.0}}
+constraints:
+  - {type: clamp, body: rail, at: start}
+  - {type: sliding_joint, name: belt_rear, body: belt, at: start, track: rail}
+  - {type: sliding_joint, name: belt_front, body: belt, at: end, track: rail}
+  - {type: extraction_drive, name: belt_drive, joint: belt_rear, displacement: {type: ramp, t0: 0, t1: 1000, from: 0, to: 100}}
+  - type: sliding_joint
+    name: pad1
+    body: block
+    at: start
+    track: belt
+    friction: {mu_s: %.12g, mu_c: %.12g, v_s: 1.0e-3, alpha: 2, sigma0: %.12g, sigma1: %.12g, sigma2: 0.2}
+  - type: sliding_joint
+    name: pad2
+    body: block
+    at: end
+    track: belt
+    friction: {mu_s: %.12g, mu_c: %.12g, v_s: 1.0e-3, alpha: 2, sigma0: %.12g, sigma1: %.12g, sigma2: 0.2}
+springs:
+  - {name: spring, body: block, at: 0.1, point: [%.12g, 0], stiffness: 2.0, rest_length: 1.0}
+dynamic: {t_end: %g, dt: %g, rho_inf: 0.8}
+output:
+  sensors:
+    - {name: centre, body: block, at: 0.1}
+)",
+                1.5 / N, 1.0 / N, 1e5 / N, std::sqrt(1e5) / N, 1.5 / N, 1.0 / N, 1e5 / N, std::sqrt(1e5) / N, x0 - 1.0, tEnd, h);
+  const DynamicHistory run = runDynamic(parseScene(text, "lugre-belt.yaml"));
+  EXPECT_TRUE(run.summary.completed) << run.summary.failure;
+  BeltCycle out;
+  if (run.sensors.empty() || run.sensors[0].empty()) return out; // not rank 0
+  // Spring force = k * (x - x0); the belt drags the block towards -x... take |.|.
+  std::vector<double> t, f;
+  for (std::size_t k = 0; k < run.time.size(); ++k) t.push_back(run.time[k]), f.push_back(2.0 * (run.sensors[k][0].position.x() - x0));
+  // Peaks of |F| after the first cycle: local maxima of |F| above 1 N.
+  std::vector<double> peaks, peakValues;
+  for (std::size_t k = 1; k + 1 < f.size(); ++k)
+    if (std::abs(f[k]) > 1.0 && std::abs(f[k]) >= std::abs(f[k - 1]) && std::abs(f[k]) > std::abs(f[k + 1]))
+      peaks.push_back(t[k]), peakValues.push_back(std::abs(f[k]));
+  if (peaks.size() >= 3) {
+    out.cycles = static_cast<int>(peaks.size()) - 2;
+    out.period = (peaks.back() - peaks[1]) / (peaks.size() - 2);
+    out.peakForce = *std::max_element(peakValues.begin() + 1, peakValues.end());
+  }
+  return out;
+}
+
+} // namespace
+
+TEST(LuGre, MassSpringBeltStickSlipConvergesUnderStepRefinement)
+{
+  std::vector<BeltCycle> runs;
+  // About four stick-slip cycles (period ~6.4 s) at three step sizes.
+  for (double h : {4e-3, 2e-3, 1e-3}) {
+    runs.push_back(belt(h, 28.0));
+    PetscPrintf(PETSC_COMM_WORLD, "  belt, h = %.1e s: %d cycles, period %.5f s, peak spring force %.5f N\n", h,
+                runs.back().cycles, runs.back().period, runs.back().peakForce);
+  }
+  int rank;
+  MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
+  if (rank) return;
+  ASSERT_GE(runs.back().cycles, 2) << "a stick-slip limit cycle";
+  // The peak force lies between the kinetic and about the static level, and
+  // period and peak converge as h shrinks.
+  EXPECT_GT(runs.back().peakForce, 1.0);
+  EXPECT_LT(runs.back().peakForce, 1.6);
+  const double dP1 = std::abs(runs[0].period - runs[1].period), dP2 = std::abs(runs[1].period - runs[2].period);
+  const double dF1 = std::abs(runs[0].peakForce - runs[1].peakForce), dF2 = std::abs(runs[1].peakForce - runs[2].peakForce);
+  PetscPrintf(PETSC_COMM_WORLD, "  belt: period changes %.2e, %.2e s (ratio %.2f); peak changes %.2e, %.2e N (ratio %.2f)\n", dP1,
+              dP2, dP1 / dP2, dF1, dF2, dF1 / dF2);
+  EXPECT_LT(dP2, dP1);
+  EXPECT_LT(dF2, dF1);
+}
