@@ -42,3 +42,8 @@ add_test(NAME postprocess.frequency_check
   COMMAND ${python} ${CMAKE_SOURCE_DIR}/tests/postprocess/test_frequency_check.py $<TARGET_FILE:boomdyn>
           ${CMAKE_SOURCE_DIR} ${CMAKE_BINARY_DIR})
 set_tests_properties(postprocess.frequency_check PROPERTIES LABELS postprocess)
+
+add_test(NAME postprocess.stick_slip_scene
+  COMMAND ${python} ${CMAKE_SOURCE_DIR}/tests/postprocess/test_stick_slip_scene.py $<TARGET_FILE:boomdyn>
+          ${CMAKE_SOURCE_DIR} ${CMAKE_BINARY_DIR})
+set_tests_properties(postprocess.stick_slip_scene PROPERTIES LABELS postprocess)
