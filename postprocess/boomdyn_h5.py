@@ -149,3 +149,40 @@ def load_modal(f):
 
 def load_summary(f):
     return attributes(f, "/summary")
+
+
+def scene_text(f):
+    """The scene file as run (/scene/text), or "" when absent."""
+    if "scene/text" not in f:
+        return ""
+    text = f["scene/text"][()]
+    return text.decode("utf-8") if isinstance(text, bytes) else str(text)
+
+
+def load_scene(f):
+    """The scene as a dict parsed from /scene/text, or None (no text, or no PyYAML:
+    Debian's python3-yaml; the other readers here do not need it)."""
+    text = scene_text(f)
+    try:
+        import yaml
+    except ImportError:
+        return None
+    return yaml.safe_load(text) if text else None
+
+
+def body_lengths(f):
+    """{body name: undeformed length in m} from the scene text.
+
+    Lengths are not in /layout. Without PyYAML the `length:` keys of the
+    scene text are taken in order, one per body (the scene lists bodies
+    first-to-last in model order and no other key is called `length`)."""
+    layout = load_layout(f)
+    names = [b.name for b in layout.bodies] if layout else []
+    scene = load_scene(f)
+    if scene is not None:
+        return {b["name"]: float(b["length"]) for b in scene.get("bodies", [])}
+    import re
+    found = re.findall(r"(?<![\w])length:\s*([-+0-9.eE]+)", re.sub(r"#[^\n]*", "", scene_text(f)))
+    if len(found) != len(names):
+        raise ValueError("cannot tell the body lengths from /scene/text without PyYAML (python3-yaml)")
+    return {name: float(value) for name, value in zip(names, found)}

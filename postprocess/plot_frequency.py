@@ -41,20 +41,15 @@ def frequency_data(f):
     return tt, fr, tc, fc, name
 
 
-def main(argv=None):
-    p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    p.add_argument("run")
-    p.add_argument("-o", "--out")
-    p.add_argument("--paper", action="store_true", help="mark the paper's 27.0 Hz and 10.2 Hz")
-    a = p.parse_args(argv)
-    out = a.out or os.path.splitext(a.run)[0] + "_frequency.png"
-    with boomdyn_h5.open_run(a.run) as f:
+def make_figure(run, paper=False):
+    """The Fig. 7 figure of results file `run`: (matplotlib Figure, tracking times, tracked Hz)."""
+    with boomdyn_h5.open_run(run) as f:
         scene = boomdyn_h5.scene_name(f)
         tt, fr, tc, fc, signal = frequency_data(f)
     fig, ax = plt.subplots(figsize=(8, 4.5))
     ax.plot(tt, fr, "-", lw=2, label="first bending mode (eigen-analysis, tracked by MAC)")
     ax.plot(tc, fc, ".", ms=3, alpha=0.6, label="zero crossings of the %s" % signal)
-    if a.paper:
+    if paper:
         t0, t1, f0 = PAPER["retracted"]
         ax.plot([t0, t1], [f0, f0], "k--", lw=1, label="paper: 27.0 Hz retracted, 10.2 Hz extended")
         ax.plot([PAPER["t_end"]], [PAPER["extended"]], "ks", ms=6)
@@ -64,6 +59,17 @@ def main(argv=None):
     ax.grid(True, alpha=0.4)
     ax.legend(fontsize=8)
     fig.tight_layout()
+    return fig, tt, fr
+
+
+def main(argv=None):
+    p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    p.add_argument("run")
+    p.add_argument("-o", "--out")
+    p.add_argument("--paper", action="store_true", help="mark the paper's 27.0 Hz and 10.2 Hz")
+    a = p.parse_args(argv)
+    out = a.out or os.path.splitext(a.run)[0] + "_frequency.png"
+    fig, tt, fr = make_figure(a.run, a.paper)
     fig.savefig(out, dpi=120)
     print("wrote %s" % out)
     print("tracked: %.3f Hz at t = %.2f s, %.3f Hz at t = %.2f s" % (fr[0], tt[0], fr[-1], tt[-1]))

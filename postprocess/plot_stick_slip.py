@@ -3,7 +3,7 @@
 slack coordinate(s) of the frictional sliding joints against time, with the
 slip intervals shaded and the stick/slip events marked.
 
-  /usr/bin/python3 postprocess/plot_stick_slip.py RUN.h5 [-o OUT.png]
+  /usr/bin/python3 postprocess/plot_stick_slip.py RUN.h5 [-o OUT.png] [--paper]
 """
 import argparse
 import os
@@ -26,13 +26,12 @@ def elevation_deg(f):
     return f["state/time"][()], np.degrees(np.arctan2(q[:, first + 3], q[:, first + 2]))
 
 
-def main(argv=None):
-    p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    p.add_argument("run")
-    p.add_argument("-o", "--out")
-    a = p.parse_args(argv)
-    out = a.out or os.path.splitext(a.run)[0] + "_stick_slip.png"
-    with boomdyn_h5.open_run(a.run) as f:
+PAPER_EVENTS = ((5.4, "slides out"), (8.3, "sticks"), (13.5, "slides in"))  # Fig. 5, joint between booms 1 and 2
+
+
+def make_figure(run, paper=False):
+    """The Fig. 5 figure of results file `run` (matplotlib Figure); with `paper`, the paper's event times marked."""
+    with boomdyn_h5.open_run(run) as f:
         if "steps/friction_slipping" not in f:
             raise SystemExit("no friction data in this file (a scene with sliding_joint friction is needed)")
         scene = boomdyn_h5.scene_name(f)
@@ -61,10 +60,28 @@ def main(argv=None):
             if j == 0:
                 ax2.axvline(tt, color="r" if to_slip else "b", lw=0.8, ls="--")
                 ax2.annotate("%.1f s" % tt, (tt, ax2.get_ylim()[1]), fontsize=7, rotation=90, va="top")
+    if paper:
+        for k, (tt, what) in enumerate(PAPER_EVENTS):
+            for ax in (ax1, ax2):
+                ax.axvline(tt, color="k", lw=1.2, ls=":", label="paper's events (5.4, 8.3, 13.5 s)"
+                           if (k == 0 and ax is ax2) else None)
+            ax1.annotate("paper: " + what, (tt, ax1.get_ylim()[0]), fontsize=7, rotation=90, va="bottom",
+                         ha="right")
     ax2.set_xlabel("time [s]")
     ax2.set_ylabel("arc-length coordinate [m]")
     ax2.legend(fontsize=8, loc="best")
     fig.tight_layout()
+    return fig
+
+
+def main(argv=None):
+    p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    p.add_argument("run")
+    p.add_argument("-o", "--out")
+    p.add_argument("--paper", action="store_true", help="mark the paper's event times (5.4, 8.3, 13.5 s)")
+    a = p.parse_args(argv)
+    out = a.out or os.path.splitext(a.run)[0] + "_stick_slip.png"
+    fig = make_figure(a.run, a.paper)
     fig.savefig(out, dpi=120)
     print("wrote %s" % out)
 

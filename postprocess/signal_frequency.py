@@ -4,6 +4,18 @@ motion), for comparing with the tracked first frequency."""
 import numpy as np
 
 
+def moving_average(t, y, window):
+    """Centred moving average of y over `window` seconds (edge values repeated at the ends):
+    the slow part of a vibrating signal. t must be (about) evenly spaced."""
+    t = np.asarray(t, dtype=float)
+    y = np.asarray(y, dtype=float)
+    dt = np.median(np.diff(t))
+    half = max(1, int(round(0.5 * window / dt)))
+    kernel = np.ones(2 * half + 1) / (2 * half + 1)
+    padded = np.pad(y, half, mode="edge")
+    return np.convolve(padded, kernel, mode="valid")
+
+
 def zero_crossing_frequency(t, y, trend_window):
     """Instantaneous frequency from successive upward zero crossings.
 
@@ -14,12 +26,7 @@ def zero_crossing_frequency(t, y, trend_window):
     """
     t = np.asarray(t, dtype=float)
     y = np.asarray(y, dtype=float)
-    dt = np.median(np.diff(t))
-    half = max(1, int(round(0.5 * trend_window / dt)))
-    kernel = np.ones(2 * half + 1) / (2 * half + 1)
-    padded = np.pad(y, half, mode="edge")
-    trend = np.convolve(padded, kernel, mode="valid")
-    r = y - trend
+    r = y - moving_average(t, y, trend_window)
     # Upward crossings, located by linear interpolation.
     idx = np.nonzero((r[:-1] < 0) & (r[1:] >= 0))[0]
     tc = t[idx] - r[idx] * (t[idx + 1] - t[idx]) / (r[idx + 1] - r[idx])

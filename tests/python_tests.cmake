@@ -47,3 +47,19 @@ add_test(NAME postprocess.stick_slip_scene
   COMMAND ${python} ${CMAKE_SOURCE_DIR}/tests/postprocess/test_stick_slip_scene.py $<TARGET_FILE:boomdyn>
           ${CMAKE_SOURCE_DIR} ${CMAKE_BINARY_DIR})
 set_tests_properties(postprocess.stick_slip_scene PROPERTIES LABELS postprocess)
+
+add_test(NAME regression.restart
+  COMMAND ${python} ${CMAKE_SOURCE_DIR}/tests/regression/test_restart.py $<TARGET_FILE:boomdyn>
+          ${CMAKE_SOURCE_DIR} ${CMAKE_BINARY_DIR})
+set_tests_properties(regression.restart PROPERTIES LABELS "regression;mpi" PROCESSORS 2
+  ENVIRONMENT "OMPI_ALLOW_RUN_AS_ROOT=1;OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1")
+
+add_test(NAME postprocess.snapshots
+  COMMAND ${python} ${CMAKE_SOURCE_DIR}/tests/postprocess/test_snapshots.py $<TARGET_FILE:boomdyn>
+          ${CMAKE_SOURCE_DIR} ${CMAKE_BINARY_DIR})
+set_tests_properties(postprocess.snapshots PROPERTIES LABELS postprocess)
+
+add_test(NAME postprocess.paper_comparison_figures
+  COMMAND ${python} ${CMAKE_SOURCE_DIR}/tests/postprocess/test_paper_comparison.py $<TARGET_FILE:boomdyn>
+          ${CMAKE_SOURCE_DIR} ${CMAKE_BINARY_DIR})
+set_tests_properties(postprocess.paper_comparison_figures PROPERTIES LABELS postprocess)

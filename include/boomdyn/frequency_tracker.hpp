@@ -6,6 +6,7 @@
 // At the first call the lowest mode with omega^2 > 0 is taken.
 #pragma once
 
+#include "boomdyn/checkpoint.hpp"
 #include "boomdyn/eigen_solver.hpp"
 
 namespace boomdyn {
@@ -27,6 +28,9 @@ public:
   FrequencyTracker &operator=(const FrequencyTracker &) = delete;
 
   PetscErrorCode analyze(double t, Vec q, Vec lambda, TrackedModes *out);
+  // The followed shape and eigenvalue, for checkpoints.
+  PetscErrorCode save(CheckpointWriter &out) const;
+  PetscErrorCode restore(const CheckpointReader &in);
 
 private:
   Assembler &assembler_;

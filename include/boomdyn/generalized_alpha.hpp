@@ -12,6 +12,7 @@
 // q_{n+1} and lambda_{n+1} through SNES (NewtonSolver).
 #pragma once
 
+#include "boomdyn/checkpoint.hpp"
 #include "boomdyn/newton_solver.hpp"
 #include "boomdyn/slider_tracker.hpp"
 
@@ -46,6 +47,10 @@ public:
   // Start at t0 from coordinates q0 and velocities v0 (layout of x; the
   // multiplier part is ignored): solves for consistent qdd_0 and lambda_0.
   PetscErrorCode initialize(double t0, Vec q0, Vec v0);
+  // Checkpoints: the state vectors and time; restore() replaces initialize()
+  // and moves the sliding joints to the elements that hold the restored s.
+  PetscErrorCode save(CheckpointWriter &out) const;
+  PetscErrorCode restore(const CheckpointReader &in);
   // Attempt one step of size h. On failure the state is left unchanged.
   PetscErrorCode step(double h, StepResult *result);
 

@@ -35,6 +35,9 @@ public:
   // values per joint: s, ds/dt, z, dz/dt, lambda_n (rank 0 data). Returns the new events.
   std::vector<StickSlipEvent> update(double t, const std::vector<double> &values, std::vector<FrictionReading> &out);
   const std::vector<StickSlipEvent> &events() const { return events_; }
+  // State for checkpoints (filter, stick/slip state, last direction, time).
+  std::vector<double> state() const;
+  void setState(const std::vector<double> &s);
 
 private:
   const Model &model_;

@@ -20,6 +20,26 @@ PetscErrorCode modalAssurance(Vec a, Vec b, double *mac)
   PetscFunctionReturn(0);
 }
 
+PetscErrorCode FrequencyTracker::save(CheckpointWriter &out) const
+{
+  PetscFunctionBeginUser;
+  out.addScalar("tracker.started", previous_ ? 1.0 : 0.0);
+  out.addScalar("tracker.omega2", previousOmega2_);
+  if (previous_) PetscCall(out.addVector("tracker.shape", previous_));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode FrequencyTracker::restore(const CheckpointReader &in)
+{
+  PetscFunctionBeginUser;
+  if (in.scalar("tracker.started") != 0.0) {
+    if (!previous_) PetscCall(assembler_.createVector(&previous_));
+    PetscCall(in.getVector("tracker.shape", previous_));
+  }
+  previousOmega2_ = in.scalar("tracker.omega2");
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode FrequencyTracker::analyze(double t, Vec q, Vec lambda, TrackedModes *out)
 {
   PetscFunctionBeginUser;

@@ -40,4 +40,24 @@ std::vector<StickSlipEvent> StickSlipMonitor::update(double t, const std::vector
   return fresh;
 }
 
+std::vector<double> StickSlipMonitor::state() const
+{
+  std::vector<double> out{lastTime_};
+  for (std::size_t k = 0; k < state_.size(); ++k) out.insert(out.end(), {double(state_[k]), double(lastSign_[k]), filtered_[k]});
+  return out;
+}
+
+void StickSlipMonitor::setState(const std::vector<double> &s)
+{
+  if (s.empty()) return;
+  lastTime_ = s[0];
+  const std::size_t n = (s.size() - 1) / 3;
+  state_.resize(n), lastSign_.resize(n), filtered_.resize(n);
+  for (std::size_t k = 0; k < n; ++k) {
+    state_[k] = static_cast<int>(s[1 + 3 * k]);
+    lastSign_[k] = static_cast<int>(s[2 + 3 * k]);
+    filtered_[k] = s[3 + 3 * k];
+  }
+}
+
 } // namespace boomdyn

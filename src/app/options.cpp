@@ -41,6 +41,17 @@ PetscErrorCode readAppOptions(int argc, char **argv, AppOptions *opts)
   PetscCall(PetscOptionsGetBool(nullptr, "boom_", "-quiet", &flag, nullptr));
   opts->quiet = flag;
   PetscCall(PetscOptionsGetReal(nullptr, "boom_", "-progress_interval", &opts->progressInterval, nullptr));
+  PetscCall(PetscOptionsGetReal(nullptr, "boom_", "-checkpoint_interval", &opts->checkpointInterval, nullptr));
+  require(opts->checkpointInterval >= 0, "-boom_checkpoint_interval must be >= 0");
+  PetscCall(PetscOptionsGetString(nullptr, "boom_", "-checkpoint", buf, sizeof buf, &set));
+  if (set) opts->checkpointPath = buf;
+  else {
+    const std::string out = opts->outputPath;
+    const auto dot = out.rfind(".h5");
+    opts->checkpointPath = (dot != std::string::npos && dot + 3 == out.size() ? out.substr(0, dot) : out) + ".chk.h5";
+  }
+  PetscCall(PetscOptionsGetString(nullptr, "boom_", "-restart", buf, sizeof buf, &set));
+  if (set) opts->restartPath = buf;
   PetscFunctionReturn(0);
 }
 

@@ -1,8 +1,10 @@
 #include "run.hpp"
 
 #include "progress.hpp"
+#include "signals.hpp"
 
 #include "boomdyn/assembler.hpp"
+#include "boomdyn/checkpoint.hpp"
 #include "boomdyn/eigen_solver.hpp"
 #include "boomdyn/frequency_tracker.hpp"
 #include "boomdyn/generalized_alpha.hpp"
@@ -120,24 +122,39 @@ PetscErrorCode runScene(const Scene &scene, const AppOptions &opts, int argc, ch
   Progress progress(scene.dynamic.t_end, opts.progressInterval, opts.quiet);
   PetscCall(progress.start());
   std::string status = "completed";
+  double interruptedAt = 0;
   PetscInt steps = 0, rejected = 0;
   double maxViolation = 0;
 
   if (scene.analysis == Scene::Analysis::Dynamic) {
     GeneralizedAlpha integrator(assembler, scene.dynamic.rho_inf);
     PetscCall(integrator.setUp(scene.dynamic.max_newton));
-    PetscCall(integrator.initialize(0.0, x, zero));
+    const bool restart = !opts.restartPath.empty();
+    CheckpointReader restartFile(PETSC_COMM_WORLD);
+    if (restart) {
+      PetscCall(restartFile.read(opts.restartPath));
+      if (restartFile.sceneText() != scene.text)
+        throw std::runtime_error("restart file " + opts.restartPath + " was written for another scene text than " +
+                                 scene.file);
+      PetscCall(integrator.restore(restartFile));
+    } else {
+      PetscCall(integrator.initialize(0.0, x, zero));
+    }
     EnergyParts energy;
     PetscReal violation;
     PetscCall(integrator.diagnostics(&energy, &violation));
-    PetscCall(sensors.read(integrator.positions(), integrator.velocities(), readings));
-    PetscCall(out.appendStep(0.0, 0.0, 0, violation, energy, readings));
-    PetscCall(sensors.readJoints(integrator.positions(), integrator.multipliers(), slacks, multipliers));
-    PetscCall(sensors.readFrames(integrator.positions(), deflections));
-    PetscCall(recordJoints(0.0));
-    PetscCall(out.appendState(0.0, integrator.positions(), integrator.velocities(), integrator.multipliers()));
+    if (!restart) { // a restarted file starts with the restored state snapshot only
+      PetscCall(sensors.read(integrator.positions(), integrator.velocities(), readings));
+      PetscCall(out.appendStep(0.0, 0.0, 0, violation, energy, readings));
+      PetscCall(sensors.readJoints(integrator.positions(), integrator.multipliers(), slacks, multipliers));
+      PetscCall(sensors.readFrames(integrator.positions(), deflections));
+      PetscCall(recordJoints(0.0));
+    }
+    PetscCall(out.appendState(integrator.time(), integrator.positions(), integrator.velocities(), integrator.multipliers()));
     maxViolation = violation;
     double nextState = scene.output.state_interval;
+    double nextCheckpoint = opts.checkpointInterval;
+    StepperState stepper;
     // Stick/slip of frictional joints: readings every step, transitions as events.
     StickSlipMonitor stickSlip(model);
     std::vector<double> frictionValues;
@@ -154,7 +171,7 @@ PetscErrorCode runScene(const Scene &scene, const AppOptions &opts, int argc, ch
                               e.toSlip ? "stick -> slip" : "slip -> stick", e.direction > 0 ? "s decreasing" : "s increasing"));
       PetscFunctionReturn(0);
     };
-    PetscCall(recordFriction(0.0));
+    if (!restart) PetscCall(recordFriction(0.0));
     // Frequency tracking: SLEPc only for scenes that ask for it.
     std::unique_ptr<FrequencyTracker> tracker;
     double nextTrack = 0.0;
@@ -177,7 +194,48 @@ PetscErrorCode runScene(const Scene &scene, const AppOptions &opts, int argc, ch
     if (scene.tracking.interval > 0) {
       PetscCall(SlepcInitialize(nullptr, nullptr, nullptr, nullptr));
       tracker = std::make_unique<FrequencyTracker>(assembler, scene.tracking.count);
-      PetscCall(track(0.0, scene.dynamic.dt));
+      if (!restart) PetscCall(track(0.0, scene.dynamic.dt));
+    }
+    // Checkpoints: everything needed to continue this run bitwise (one rank).
+    auto writeCheckpoint = [&](const StepperState &st) -> PetscErrorCode {
+      PetscFunctionBeginUser;
+      CheckpointWriter w(PETSC_COMM_WORLD);
+      PetscCall(integrator.save(w));
+      w.addScalar("stepper.h", st.h);
+      w.addScalar("stepper.successes", st.successesSinceCut);
+      w.addScalar("stepper.steps", st.steps);
+      w.addScalar("stepper.rejected", st.rejected);
+      w.addScalar("stepper.newton", st.newtonIterations);
+      w.addScalar("next_state", nextState);
+      w.addScalar("next_track", nextTrack);
+      w.addScalar("next_checkpoint", nextCheckpoint);
+      w.addScalar("slack_rope_steps", slackRopeSteps);
+      w.addScalar("max_violation", maxViolation);
+      w.addArray("shape_times", shapeTimes);
+      w.addArray("stick_slip", stickSlip.state());
+      if (tracker) PetscCall(tracker->save(w));
+      PetscCall(w.write(opts.checkpointPath, scene.text));
+      if (!opts.quiet)
+        PetscCall(PetscPrintf(PETSC_COMM_WORLD, "checkpoint at t = %g s -> %s\n", integrator.time(), opts.checkpointPath.c_str()));
+      PetscFunctionReturn(0);
+    };
+    if (restart) {
+      stepper.h = restartFile.scalar("stepper.h");
+      stepper.successesSinceCut = static_cast<int>(restartFile.scalar("stepper.successes"));
+      stepper.steps = static_cast<PetscInt>(restartFile.scalar("stepper.steps"));
+      stepper.rejected = static_cast<PetscInt>(restartFile.scalar("stepper.rejected"));
+      stepper.newtonIterations = static_cast<PetscInt>(restartFile.scalar("stepper.newton"));
+      nextState = restartFile.scalar("next_state");
+      nextTrack = restartFile.scalar("next_track");
+      nextCheckpoint = restartFile.scalar("next_checkpoint");
+      slackRopeSteps = static_cast<PetscInt>(restartFile.scalar("slack_rope_steps"));
+      maxViolation = restartFile.scalar("max_violation");
+      shapeTimes = restartFile.array("shape_times");
+      stickSlip.setState(restartFile.array("stick_slip"));
+      if (tracker) PetscCall(tracker->restore(restartFile));
+      if (!opts.quiet)
+        PetscCall(PetscPrintf(PETSC_COMM_WORLD, "restarted from %s at t = %g s (step %" PetscInt_FMT ")\n",
+                              opts.restartPath.c_str(), integrator.time(), stepper.steps));
     }
     auto onStep = [&](const StepInfo &s) -> PetscErrorCode {
       PetscFunctionBeginUser;
@@ -195,14 +253,24 @@ PetscErrorCode runScene(const Scene &scene, const AppOptions &opts, int argc, ch
       }
       PetscCall(recordFriction(s.t));
       PetscCall(track(s.t, s.h));
+      if (opts.checkpointInterval > 0 && s.t >= nextCheckpoint - 1e-9 * s.h && !last) {
+        while (nextCheckpoint <= s.t + 1e-9 * s.h) nextCheckpoint += opts.checkpointInterval;
+        PetscCall(writeCheckpoint(*s.stepper));
+      }
       PetscCall(progress.update(s.step, s.t, s.h, s.iterations, s.rejected));
       PetscFunctionReturn(0);
     };
     RunSummary summary;
-    PetscCall(integrate(integrator, scene.dynamic, onStep, &summary));
+    PetscCall(integrate(integrator, scene.dynamic, onStep, &summary, &stepper,
+                        [] { return interruptRequested(PETSC_COMM_WORLD); }));
     steps = summary.steps;
     rejected = summary.rejected;
-    if (!summary.completed) {
+    if (summary.interrupted) {
+      status = "interrupted";
+      interruptedAt = integrator.time();
+      PetscCall(out.appendState(integrator.time(), integrator.positions(), integrator.velocities(), integrator.multipliers()));
+      PetscCall(writeCheckpoint(stepper));
+    } else if (!summary.completed) {
       status = "failed: " + summary.failure;
       PetscCall(out.appendState(integrator.time(), integrator.positions(), integrator.velocities(), integrator.multipliers()));
     }
@@ -261,7 +329,12 @@ PetscErrorCode runScene(const Scene &scene, const AppOptions &opts, int argc, ch
   PetscCall(out.finish(status, steps, rejected, progress.elapsed(), maxViolation));
   PetscCall(VecDestroy(&x));
   PetscCall(VecDestroy(&zero));
-  // A failed run exits non-zero; its results file is complete up to the failure and says so in /summary.
+  // A failed or interrupted run exits non-zero; its results file is complete
+  // up to that point and says so in /summary.
+  if (status == "interrupted")
+    throw Interrupted("run interrupted at t = " + std::to_string(interruptedAt) + " s by signal " +
+                      std::to_string(interruptSignal()) + "; results so far in " + opts.outputPath +
+                      ", continue with -boom_restart " + opts.checkpointPath);
   if (status != "completed") throw std::runtime_error("run " + status + " (results so far in " + opts.outputPath + ")");
   PetscFunctionReturn(0);
 }

@@ -8,7 +8,15 @@
 
 #include <petscsys.h>
 
+#include <stdexcept>
+
 namespace boomdyn {
+
+// A run stopped by SIGINT/SIGTERM (after writing a checkpoint).
+class Interrupted : public std::runtime_error {
+public:
+  using std::runtime_error::runtime_error;
+};
 
 PetscErrorCode runScene(const Scene &scene, const AppOptions &opts, int argc, char **argv);
 

@@ -177,6 +177,33 @@ PetscErrorCode GeneralizedAlpha::step(double h, StepResult *result)
   PetscFunctionReturn(0);
 }
 
+PetscErrorCode GeneralizedAlpha::save(CheckpointWriter &out) const
+{
+  PetscFunctionBeginUser;
+  PetscCall(out.addVector("q", q_));
+  PetscCall(out.addVector("v", v_));
+  PetscCall(out.addVector("qdd", qdd_));
+  PetscCall(out.addVector("a", a_));
+  PetscCall(out.addVector("lambda", lambda_));
+  out.addScalar("t", t_);
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode GeneralizedAlpha::restore(const CheckpointReader &in)
+{
+  bool relocated;
+  std::string offTrack;
+  PetscFunctionBeginUser;
+  PetscCall(in.getVector("q", q_));
+  PetscCall(in.getVector("v", v_));
+  PetscCall(in.getVector("qdd", qdd_));
+  PetscCall(in.getVector("a", a_));
+  PetscCall(in.getVector("lambda", lambda_));
+  t_ = in.scalar("t");
+  PetscCall(sliders_.update(q_, t_, &relocated, &offTrack));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode GeneralizedAlpha::diagnostics(EnergyParts *energy, PetscReal *violation)
 {
   PetscFunctionBeginUser;

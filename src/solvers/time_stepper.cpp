@@ -6,13 +6,20 @@
 namespace boomdyn {
 
 PetscErrorCode integrate(GeneralizedAlpha &integrator, const DynamicSpec &spec,
-                         const std::function<PetscErrorCode(const StepInfo &)> &onStep, RunSummary *summary)
+                         const std::function<PetscErrorCode(const StepInfo &)> &onStep, RunSummary *summary,
+                         StepperState *state, const std::function<bool()> &stop)
 {
   PetscFunctionBeginUser;
+  StepperState local;
+  StepperState &st = state ? *state : local;
+  if (st.h <= 0) st.h = spec.dt;
   *summary = RunSummary{};
-  double h = spec.dt;
-  int successesSinceCut = 0;
+  double &h = st.h;
+  int &successesSinceCut = st.successesSinceCut;
+  summary->rejected = st.rejected;
+  summary->newtonIterations = st.newtonIterations;
   StepInfo info;
+  info.step = st.steps;
   // Stop within a hair of t_end rather than take a sliver of a step.
   const double tolerance = 1e-9 * spec.dt;
   while (integrator.time() < spec.t_end - tolerance) {
@@ -32,6 +39,7 @@ PetscErrorCode integrate(GeneralizedAlpha &integrator, const DynamicSpec &spec,
       PetscCall(PetscPrintf(PETSC_COMM_WORLD, "warning: step at t = %g s with h = %g s rejected (%s after %" PetscInt_FMT
                             " Newton iterations); retrying with h = %g s\n",
                             integrator.time(), attempt, SNESConvergedReasons[r.reason], r.iterations, h));
+      st.rejected = summary->rejected;
       if (h < spec.dt_min) {
         std::ostringstream os;
         os << "Newton failed at t = " << integrator.time() << " s (" << SNESConvergedReasons[r.reason]
@@ -48,11 +56,18 @@ PetscErrorCode integrate(GeneralizedAlpha &integrator, const DynamicSpec &spec,
     info.iterations = r.iterations;
     info.rejected = summary->rejected;
     summary->newtonIterations += r.iterations;
-    if (onStep) PetscCall(onStep(info));
     // Grow back towards the scene's dt after a few successes at a cut step.
     if (h < spec.dt && ++successesSinceCut >= 4) {
       h = std::min(spec.dt, 2.0 * h);
       successesSinceCut = 0;
+    }
+    st.steps = info.step, st.rejected = summary->rejected, st.newtonIterations = summary->newtonIterations;
+    info.stepper = &st;
+    if (onStep) PetscCall(onStep(info));
+    if (stop && stop() && integrator.time() < spec.t_end - tolerance) {
+      summary->interrupted = true;
+      summary->steps = info.step;
+      PetscFunctionReturn(0);
     }
   }
   summary->completed = true;

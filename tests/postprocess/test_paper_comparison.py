@@ -1,0 +1,101 @@
+#!/usr/bin/env python3
+"""The figure and report functions of postprocess/paper_comparison.py on short,
+coarse runs (4 elements per boom; extraction scenes to 2.5 s, elevation to
+2 s, stick-slip to 0.5 s), not the full paper runs (those take minutes: run
+paper_comparison.py itself). Every figure must be a real picture, the report
+must link every figure, the Fig. 9 sketch must measure the deflection boomdyn
+wrote, and the elevation rate from the motion must follow the scene's profile.
+Usage: test_paper_comparison.py BOOMDYN_EXECUTABLE SOURCE_DIR WORK_DIR"""
+import os
+import subprocess
+import sys
+import traceback
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.image  # noqa: E402
+import numpy as np  # noqa: E402
+
+boomdyn, source, work = sys.argv[1:4]
+sys.path.insert(0, os.path.join(source, "postprocess"))
+import paper_comparison as pc  # noqa: E402
+
+COARSE = ["-boom_overwrite", "-boom_quiet", "-boom_elements", "4"]
+results = []
+
+
+def check(ok, what):
+    results.append((bool(ok), what))
+    print(("ok   " if ok else "FAIL ") + what)
+
+
+def run(scene, t_end, extra=()):
+    out = os.path.join(work, "pc_" + scene + ".h5")
+    subprocess.run([boomdyn, os.path.join(source, "inputs", scene + ".yaml"), "-o", out, "-ts_max_time", str(t_end)]
+                   + COARSE + list(extra), check=True, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    return pc.Run(out)
+
+
+def main():
+    extraction = run("paper_extraction", 2.5, ["-boom_tracking_interval", "0.05"])
+    rigid = run("paper_rigid_booms", 2.5)
+    elevation = run("paper_elevation_70", 2.0)
+    stick = run("paper_stick_slip", 0.5)
+    # Stand-ins: the short extraction run plays every load case, the 70° run both elevations.
+    runs = {"paper_extraction": extraction, "paper_extraction_5kN": extraction, "paper_extraction_20kN": extraction,
+            "paper_rigid_booms": rigid, "paper_elevation_35": elevation, "paper_elevation_70": elevation,
+            "paper_stick_slip": stick}
+    out = os.path.join(work, "pc_docs")
+    figures = pc.make_figures(runs, os.path.join(out, "figures"))
+    check(sorted(figures) == ["fig%02d" % k for k in range(5, 15)], "a figure for each of Figs. 5-14")
+    for key, path in sorted(figures.items()):
+        ok = os.path.isfile(path) and os.path.getsize(path) > 0 and float(matplotlib.image.imread(path).std()) > 0
+        check(ok, "%s is a non-uniform PNG" % os.path.basename(path))
+
+    numbers = pc.collect(runs)
+    report = pc.write_report(os.path.join(out, "paper-comparison.md"), runs, figures, numbers)
+    text = open(report).read()
+    links = [line.split("](", 1)[1].rstrip(")") for line in text.splitlines() if line.startswith("![")]
+    check(len(links) == 10 and all(os.path.isfile(os.path.join(out, link)) for link in links),
+          "the report links the 10 figures by relative paths that exist")
+    check("27.0 Hz" in text and "10.2 Hz" in text and "5.4 s" in text, "the report quotes the paper's numbers")
+
+    g = numbers["frame9"]
+    check(abs(g["delta"] - g["written"]) < 1e-12, "Fig. 9 sketch: deflection %.6e m, boomdyn wrote %.6e m"
+          % (g["delta"], g["written"]))
+    check(abs(np.dot(g["ex"], g["contact"] - g["origin"]) - np.linalg.norm(g["contact"] - g["origin"])) < 1e-12,
+          "Fig. 9 sketch: the x3 axis runs through boom 3's rear end and the j3 contact point")
+
+    te, numeric, analytic, theta = pc.elevation_rates(elevation)
+    if analytic is None:
+        print("skipped: elevation profile from the scene (no PyYAML)")
+    else:
+        inside = (te > 0.05) & (te < te[-1] - 0.05)  # np.gradient is one-sided at the ends
+        err = np.abs(numeric - analytic)[inside].max()
+        check(err < 1e-3 * max(analytic.max(), 1e-3) + 1e-5,
+              "Fig. 12: rate from the motion follows the scene's profile (largest difference %.1e rad/s)" % err)
+    check(numbers["freq"]["f0"] > 0 and np.isfinite(numbers["freq"]["zc_start"]), "Fig. 7 numbers from the tracking")
+
+    # The time-function derivatives against finite differences of the functions themselves.
+    t = np.linspace(0, 8, 8001)
+    smooth = {"type": "smooth_step", "t0": 1.0, "t1": 6.73, "from": 0, "to": 70}
+    s = np.clip((t - 1.0) / 5.73, 0, 1)
+    value = 70 * (10 * s**3 - 15 * s**4 + 6 * s**5)
+    fd = np.gradient(value, t)
+    check(np.abs(pc.time_function_rate(smooth, t) - fd)[1:-1].max() < 1e-4, "smooth_step rate = d/dt of the profile")
+    sine = {"type": "sine", "amplitude": 15, "frequency": 0.04431, "phase": 158.3, "offset": 5}
+    value = 5 + 15 * np.sin(2 * np.pi * 0.04431 * t + np.radians(158.3))
+    err = np.abs(pc.time_function_rate(sine, t) - np.gradient(value, t))[1:-1]  # central differences only
+    check(err.max() < 1e-4, "sine rate = d/dt of the sine")
+
+
+if __name__ == "__main__":
+    try:
+        main()
+    except Exception:  # a crash counts as a failure, with its trace
+        traceback.print_exc()
+        results.append((False, "test crashed"))
+    failed = sum(not ok for ok, _ in results)
+    print("%d passed, %d failed" % (len(results) - failed, failed))
+    sys.exit(1 if failed else 0)
