@@ -63,3 +63,8 @@ add_test(NAME postprocess.paper_comparison_figures
   COMMAND ${python} ${CMAKE_SOURCE_DIR}/tests/postprocess/test_paper_comparison.py $<TARGET_FILE:boomdyn>
           ${CMAKE_SOURCE_DIR} ${CMAKE_BINARY_DIR})
 set_tests_properties(postprocess.paper_comparison_figures PROPERTIES LABELS postprocess)
+
+add_test(NAME postprocess.xdmf
+  COMMAND ${python} ${CMAKE_SOURCE_DIR}/tests/postprocess/test_xdmf.py $<TARGET_FILE:boomdyn>
+          ${CMAKE_SOURCE_DIR} ${CMAKE_BINARY_DIR})
+set_tests_properties(postprocess.xdmf PROPERTIES LABELS postprocess)

@@ -54,6 +54,10 @@ public:
 
 private:
   PetscErrorCode gather(Vec v, std::vector<double> &out);
+  // ParaView: booms sampled inside the elements at each state snapshot (rank 0),
+  // and the XDMF file beside the results that describes them.
+  void writeSampledBooms(double t, const std::vector<double> &q, const std::vector<double> &v);
+  void writeXdmf() const;
   void appendStepRow(double t, double dt, PetscInt iterations, double violation, const EnergyParts &e,
                      const std::vector<SensorReading> &sensors);
   void writeModeArrays(double t, const ModalResult &modes);
@@ -66,6 +70,8 @@ private:
   VecScatter toZero_ = nullptr;
   Vec gathered_ = nullptr;
   PetscInt slackRopeSteps_ = 0;
+  std::vector<double> snapshotTimes_;
+  std::size_t sampledPoints_ = 0, sampledSegments_ = 0;
   long long eventCount_ = 0;
   std::chrono::steady_clock::time_point lastFlush_ = std::chrono::steady_clock::now();
 };

@@ -2,10 +2,13 @@
 
 #include "boomdyn/log_events.hpp"
 #include "boomdyn/rope.hpp"
+#include "boomdyn/ancf_beam.hpp"
 
 #include <algorithm>
 #include <chrono>
 #include <ctime>
+#include <cstdio>
+#include <fstream>
 #include <stdexcept>
 
 namespace boomdyn {
@@ -211,10 +214,84 @@ PetscErrorCode ResultsWriter::appendState(double t, Vec q, Vec v, Vec lambda)
     file_->appendRow("/state/q", qa.data(), nq);
     file_->appendRow("/state/v", va.data(), nq);
     if (nl > 0) file_->appendRow("/state/lambda", la.data() + nq, nl);
+    writeSampledBooms(t, qa, va);
     file_->flush();
+    writeXdmf();
   }));
   PetscCall(PetscLogEventEnd(logEvents().output, 0, 0, 0, 0));
   PetscFunctionReturn(0);
+}
+
+// Points per element at which beams are sampled for ParaView (plus the end).
+static constexpr int kSamplesPerElement = 4;
+
+void ResultsWriter::writeSampledBooms(double t, const std::vector<double> &q, const std::vector<double> &v)
+{
+  std::vector<double> points, velocity, strain, curvature;
+  std::vector<int> segments;
+  for (const auto &body : model_.bodies()) {
+    const auto *beam = dynamic_cast<const AncfBeam *>(body.get());
+    const int elements = beam ? beam->numElements() : 1, perElement = beam ? kSamplesPerElement : 1;
+    const int n = elements * perElement + 1;
+    const int first = static_cast<int>(points.size() / 3);
+    for (int k = 0; k < n; ++k) {
+      const double s = body->length() * k / (n - 1);
+      const CenterlineLocation loc = body->locate(s);
+      double vals[8], vels[8];
+      for (int i = 0; i < loc.count; ++i) vals[i] = q[loc.dofs[i]], vels[i] = v[loc.dofs[i]];
+      CenterlineSample p;
+      body->sample(loc, s, vals, p);
+      const Vec2 r1 = p.r[1], r2 = p.r[2];
+      const Vec2 vel = p.r_q[0].leftCols(loc.count) * Eigen::Map<const Eigen::VectorXd>(vels, loc.count);
+      points.insert(points.end(), {p.r[0].x(), p.r[0].y(), 0.0});
+      velocity.insert(velocity.end(), {vel.x(), vel.y(), 0.0});
+      strain.push_back(0.5 * (r1.squaredNorm() - 1.0));                             // Green axial strain
+      curvature.push_back((r1.x() * r2.y() - r1.y() * r2.x()) / r1.squaredNorm()); // material curvature
+      if (k > 0) segments.insert(segments.end(), {first + k - 1, first + k});
+    }
+  }
+  const std::size_t np = points.size() / 3, ns = segments.size() / 2;
+  const std::string base = "/paraview/" + std::to_string(snapshotTimes_.size());
+  if (snapshotTimes_.empty()) file_->writeArray("/paraview/segments", segments, {ns, 2});
+  file_->writeArray(base + "/points", points, {np, 3});
+  file_->writeArray(base + "/velocity", velocity, {np, 3});
+  file_->writeArray(base + "/axial_strain", strain, {np});
+  file_->writeArray(base + "/curvature", curvature, {np});
+  file_->setAttribute(base, "time", t);
+  snapshotTimes_.push_back(t);
+  sampledPoints_ = np, sampledSegments_ = ns;
+}
+
+void ResultsWriter::writeXdmf() const
+{
+  // Beside the results file, same stem; HDF5 paths are relative to the XDMF file.
+  const std::string xmf = (path_.size() > 3 && path_.compare(path_.size() - 3, 3, ".h5") == 0 ? path_.substr(0, path_.size() - 3) : path_) + ".xmf";
+  const std::string h5 = path_.substr(path_.find_last_of('/') == std::string::npos ? 0 : path_.find_last_of('/') + 1);
+  std::ofstream out(xmf + ".tmp");
+  const std::string np = std::to_string(sampledPoints_), ns = std::to_string(sampledSegments_);
+  out << "<?xml version=\"1.0\" ?>\n<Xdmf Version=\"3.0\">\n <Domain>\n"
+      << "  <Grid Name=\"" << model_.scene().name << "\" GridType=\"Collection\" CollectionType=\"Temporal\">\n";
+  for (std::size_t k = 0; k < snapshotTimes_.size(); ++k) {
+    const std::string g = h5 + ":/paraview/" + std::to_string(k);
+    char time[64];
+    std::snprintf(time, sizeof time, "%.17g", snapshotTimes_[k]);
+    out << "   <Grid Name=\"booms\" GridType=\"Uniform\">\n    <Time Value=\"" << time << "\"/>\n"
+        << "    <Topology TopologyType=\"Polyline\" NodesPerElement=\"2\" NumberOfElements=\"" << ns << "\">\n"
+        << "     <DataItem Dimensions=\"" << ns << " 2\" NumberType=\"Int\" Format=\"HDF\">" << h5
+        << ":/paraview/segments</DataItem>\n    </Topology>\n"
+        << "    <Geometry GeometryType=\"XYZ\">\n     <DataItem Dimensions=\"" << np
+        << " 3\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">" << g << "/points</DataItem>\n    </Geometry>\n";
+    for (const char *field : {"axial_strain", "curvature"})
+      out << "    <Attribute Name=\"" << field << "\" AttributeType=\"Scalar\" Center=\"Node\">\n     <DataItem Dimensions=\""
+          << np << "\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">" << g << "/" << field
+          << "</DataItem>\n    </Attribute>\n";
+    out << "    <Attribute Name=\"velocity\" AttributeType=\"Vector\" Center=\"Node\">\n     <DataItem Dimensions=\"" << np
+        << " 3\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">" << g << "/velocity</DataItem>\n    </Attribute>\n"
+        << "   </Grid>\n";
+  }
+  out << "  </Grid>\n </Domain>\n</Xdmf>\n";
+  out.close();
+  std::rename((xmf + ".tmp").c_str(), xmf.c_str());
 }
 
 PetscErrorCode ResultsWriter::writeModes(double t, const ModalResult &modes)
