@@ -184,6 +184,74 @@ class Plotter:
         self.save(fig, "boom_shape", f"boom shape (beam nodes joined by straight lines{scale})")
 
 
+def _names(f, path):
+    return [x.decode() if isinstance(x, bytes) else str(x) for x in f[path][()]] if path in f else []
+
+
+def joint_plots(plotter, f):
+    """Moving-frame deflection, slack coordinates, normal contact forces and rope tension (when present)."""
+    if "steps/time" not in f:
+        return
+    t = f["steps/time"][()]
+    series = [
+        ("frame_deflection", "/steps/frame_deflection", "/layout/frame_names", "deflection in the moving frame [m]",
+         "tip deflection in the moving frame (paper Fig. 9)"),
+        ("slack_coordinates", "/steps/slack", "/layout/sliding_joint_names", "arc-length coordinate s [m]",
+         "slack coordinates of the sliding joints"),
+        ("rope_tension", "/steps/rope_tension", "/layout/rope_names", "tension [N]",
+         "rope tension (negative: the rope would have to push)"),
+    ]
+    for name, path, names_path, ylabel, title in series:
+        if path not in f:
+            plotter.skip(name, "no " + path)
+            continue
+        data, names = f[path][()], _names(f, names_path)
+        fig, (ax,) = plotter.figure()
+        for k in range(data.shape[1]):
+            ax.plot(t[: len(data)], data[:, k], label=names[k] if k < len(names) else str(k))
+        ax.set_xlabel(plotter.time_axis)
+        ax.set_ylabel(ylabel)
+        ax.grid(True)
+        ax.legend(loc="best", fontsize="small")
+        plotter.save(fig, name, title)
+    # Normal contact force lambda_n: the second row of each sliding joint.
+    joints = _names(f, "/layout/sliding_joint_names")
+    if joints and "steps/lambda" in f:
+        names = _names(f, "/layout/constraint_names")
+        first = f["layout/constraint_first_row"][()]
+        lam = f["steps/lambda"][()]
+        fig, (ax,) = plotter.figure()
+        for j in joints:
+            ax.plot(t[: len(lam)], lam[:, first[names.index(j)] + 1], label=j)
+        ax.set_xlabel(plotter.time_axis)
+        ax.set_ylabel("normal force lambda_n [N]")
+        ax.grid(True)
+        ax.legend(loc="best", fontsize="small")
+        plotter.save(fig, "contact_forces", "normal contact forces of the sliding joints")
+    else:
+        plotter.skip("contact forces", "no sliding joints")
+
+
+def special_plots(plotter, run_path):
+    """Frequency along the run (Fig. 7 style) and stick/slip bands (Fig. 5 style), when the run has them."""
+    import plot_frequency
+    import plot_stick_slip
+
+    with boomdyn_h5.open_run(run_path) as f:
+        has_tracking, has_friction = "tracking" in f, "steps/friction_slipping" in f
+    for present, module, name in ((has_tracking, plot_frequency, "frequency"), (has_friction, plot_stick_slip, "stick_slip")):
+        if not present:
+            plotter.skip(name, "no data for it in this file")
+            continue
+        made = module.make_figure(run_path)
+        fig = made[0] if isinstance(made, tuple) else made
+        plotter.outdir.mkdir(parents=True, exist_ok=True)
+        path = plotter.outdir / f"{name}.png"
+        fig.savefig(path, dpi=120)
+        plt.close(fig)
+        plotter.written.append(path)
+
+
 def plot_run(run_path, outdir=None):
     """Writes every plot the file has data for; returns the paths written."""
     run_path = Path(run_path)
@@ -201,6 +269,8 @@ def plot_run(run_path, outdir=None):
         plotter.energy(steps)
         plotter.modal_frequencies(boomdyn_h5.load_modal(f))
         plotter.boom_shapes(layout, states)
+        joint_plots(plotter, f)
+    special_plots(plotter, run_path)
     for path in plotter.written:
         print(f"wrote {path}")
     return plotter.written

@@ -41,5 +41,14 @@ img = matplotlib.image.imread(png)
 ok = img.size > 0 and float(img.std()) > 0
 print(("ok   " if ok else "FAIL ") + "Fig. 7 plot is a non-empty picture")
 passed, failed = passed + ok, failed + (not ok)
+# plot_run.py on the same (real) run: the joint, rope, frame and frequency figures.
+plots = os.path.join(work, "frequency_check_plots")
+subprocess.run([sys.executable, os.path.join(source, "postprocess", "plot_run.py"), out, "-o", plots], check=True,
+               stdout=subprocess.DEVNULL)
+for name in ("frame_deflection", "slack_coordinates", "rope_tension", "contact_forces", "frequency", "tip_vertical_position"):
+    p = os.path.join(plots, name + ".png")
+    ok = os.path.exists(p) and float(matplotlib.image.imread(p).std()) > 0
+    print(("ok   " if ok else "FAIL ") + "plot_run.py wrote a non-empty %s.png" % name)
+    passed, failed = passed + ok, failed + (not ok)
 print("%d passed, %d failed" % (passed, failed))
 sys.exit(1 if failed else 0)
