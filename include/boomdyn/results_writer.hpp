@@ -73,7 +73,7 @@ private:
   std::vector<double> snapshotTimes_;
   std::size_t sampledPoints_ = 0, sampledSegments_ = 0;
   long long eventCount_ = 0;
-  std::chrono::steady_clock::time_point lastFlush_ = std::chrono::steady_clock::now();
+  std::chrono::steady_clock::time_point lastFlush_ = std::chrono::steady_clock::now(), lastXdmf_ = lastFlush_;
 };
 
 } // namespace boomdyn

@@ -89,13 +89,21 @@ constexpr std::size_t kChunkBytes = 256 * 1024;
 constexpr std::size_t kMaxChunkRows = 1024;
 
 // One appendable dataset, kept open between appends.
+// Rows appended but not yet written: appends are buffered and written in
+// blocks (one H5Dset_extent and one H5Dwrite per block instead of per row,
+// which made output a quarter of a small run's time); flush() and close()
+// write what is pending, so a flushed file has every row.
+constexpr hsize_t kBlockRows = 256;
+
 struct Series {
   Handle dataset;
   Handle rowSpace; // memory dataspace of one row
   hid_t memType = H5I_INVALID_HID;
   int rank = 2;
   std::size_t ncols = 0;
-  hsize_t rows = 0;
+  hsize_t rows = 0;        // rows in the file
+  hsize_t pendingRows = 0; // rows in `pending`
+  std::vector<char> pending;
 };
 
 } // namespace
@@ -275,18 +283,36 @@ struct Hdf5File::Impl {
     if (!row || ncols == 0)
       throw std::runtime_error("HDF5 file '" + path + "': empty row appended to '" + dataset + "'");
     Series &s = findOrCreateSeries(dataset, fileType, memType, rank, ncols);
+    const std::size_t rowBytes = ncols * H5Tget_size(memType);
+    const char *bytes = static_cast<const char *>(row);
+    s.pending.insert(s.pending.end(), bytes, bytes + rowBytes);
+    ++s.pendingRows;
+    if (s.pendingRows >= kBlockRows) writePending(dataset, s);
+  }
 
-    const hsize_t extent[2] = {s.rows + 1, ncols};
+  // Writes the buffered rows of one series as one block.
+  void writePending(const std::string &dataset, Series &s)
+  {
+    if (s.pendingRows == 0) return;
+    const hsize_t extent[2] = {s.rows + s.pendingRows, s.ncols};
     checkStatus(H5Dset_extent(s.dataset.get(), extent), "cannot extend '" + dataset + "'");
-    s.rows += 1;
     Handle fileSpace(checkId(H5Dget_space(s.dataset.get()), "cannot get the dataspace of '" + dataset + "'"),
                      H5Sclose);
-    const hsize_t start[2] = {s.rows - 1, 0};
-    const hsize_t count[2] = {1, ncols};
+    const hsize_t start[2] = {s.rows, 0};
+    const hsize_t count[2] = {s.pendingRows, s.ncols};
     checkStatus(H5Sselect_hyperslab(fileSpace.get(), H5S_SELECT_SET, start, nullptr, count, nullptr),
-                "cannot select the new row of '" + dataset + "'");
-    checkStatus(H5Dwrite(s.dataset.get(), memType, s.rowSpace.get(), fileSpace.get(), H5P_DEFAULT, row),
+                "cannot select the new rows of '" + dataset + "'");
+    Handle memSpace(checkId(H5Screate_simple(s.rank, count, nullptr), "cannot make a block dataspace"), H5Sclose);
+    checkStatus(H5Dwrite(s.dataset.get(), s.memType, memSpace.get(), fileSpace.get(), H5P_DEFAULT, s.pending.data()),
                 "cannot append to '" + dataset + "'");
+    s.rows += s.pendingRows;
+    s.pendingRows = 0;
+    s.pending.clear();
+  }
+
+  void writeAllPending()
+  {
+    for (auto &[name, s] : series) writePending(name, s);
   }
 };
 
@@ -456,6 +482,7 @@ void Hdf5File::appendScalarInt(const std::string &datasetPath, int value)
 void Hdf5File::flush()
 {
   Impl &impl = live();
+  impl.writeAllPending();
   impl.checkStatus(H5Fflush(impl.file.get(), H5F_SCOPE_LOCAL), "cannot flush");
 }
 
@@ -464,6 +491,7 @@ void Hdf5File::close()
   if (!isOpen())
     return;
   Impl &impl = *impl_;
+  impl.writeAllPending();
   // Objects first: the file is only really closed once nothing in it is open.
   impl.series.clear();
   impl.linkCreate.reset();

@@ -216,7 +216,13 @@ PetscErrorCode ResultsWriter::appendState(double t, Vec q, Vec v, Vec lambda)
     if (nl > 0) file_->appendRow("/state/lambda", la.data() + nq, nl);
     writeSampledBooms(t, qa, va);
     file_->flush();
-    writeXdmf();
+    // The XDMF text grows with every snapshot: rewrite it now and then (and
+    // always in finish()), not at every snapshot, which would be quadratic.
+    const auto now = std::chrono::steady_clock::now();
+    if (snapshotTimes_.size() == 1 || now - lastXdmf_ > std::chrono::seconds(5)) {
+      writeXdmf();
+      lastXdmf_ = now;
+    }
   }));
   PetscCall(PetscLogEventEnd(logEvents().output, 0, 0, 0, 0));
   PetscFunctionReturn(0);
@@ -374,6 +380,7 @@ PetscErrorCode ResultsWriter::finish(const std::string &status, PetscInt steps, 
 {
   PetscFunctionBeginUser;
   PetscCall(onRankZero(comm_, rank_, [&] {
+    if (!snapshotTimes_.empty()) writeXdmf();
     file_->setAttribute("/summary", "status", status);
     file_->setAttribute("/summary", "steps", static_cast<long long>(steps));
     file_->setAttribute("/summary", "rejected_steps", static_cast<long long>(rejected));

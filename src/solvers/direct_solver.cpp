@@ -11,7 +11,12 @@ PetscErrorCode useDirectSolver(KSP ksp)
   PetscCall(KSPSetType(ksp, KSPPREONLY));
   PetscCall(KSPGetPC(ksp, &pc));
   PetscCall(PCSetType(pc, PCLU));
-  PetscCall(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS));
+  // One rank: KLU (SuiteSparse) factors these small, banded saddle-point
+  // systems about twice as fast as MUMPS (measured on the paper extraction
+  // scene, same results); several ranks: MUMPS, the distributed one.
+  PetscMPIInt size;
+  PetscCallMPI(MPI_Comm_size(PetscObjectComm((PetscObject)ksp), &size));
+  PetscCall(PCFactorSetMatSolverType(pc, size == 1 ? MATSOLVERKLU : MATSOLVERMUMPS));
   // MUMPS reads ICNTL(14) from the options database under the KSP's prefix
   // when the factor is created; give a default only if the user has none.
   PetscCall(KSPGetOptionsPrefix(ksp, &prefix));
