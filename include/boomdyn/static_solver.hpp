@@ -7,6 +7,7 @@
 #include "boomdyn/newton_solver.hpp"
 
 #include <functional>
+#include <string>
 
 namespace boomdyn {
 
@@ -29,13 +30,16 @@ public:
   PetscErrorCode solve(double t, int loadSteps, Vec x, const std::function<PetscErrorCode(const LoadStepInfo &)> &onStep,
                        PetscBool *converged);
   Vec multipliers() const { return lambda_; }
+  // Why the last solve failed (empty when it converged).
+  const std::string &failure() const { return failure_; }
   double sigma() const { return sigma_; }
 
 private:
   Assembler &assembler_;
   NewtonSolver newton_;
   Vec lambda_ = nullptr, backup_ = nullptr;
-  double sigma_ = 1;
+  double sigma_ = 1, structureSize_ = 0;
+  std::string failure_;
 };
 
 } // namespace boomdyn

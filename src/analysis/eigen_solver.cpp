@@ -9,6 +9,8 @@
 #include <algorithm>
 #include <cmath>
 #include <numeric>
+#include <stdexcept>
+#include <string>
 
 namespace boomdyn {
 
@@ -107,6 +109,13 @@ PetscErrorCode solveModes(Assembler &assembler, double t, Vec q, Vec lambda, int
     PetscReal err;
     PetscCall(EPSGetEigenpair(eps, i, &w, nullptr, xr, nullptr));
     PetscCall(EPSComputeError(eps, i, EPS_ERROR_RELATIVE, &err));
+    // An eigenpair that did not converge (rigid-body modes of a mechanism:
+    // a singular stiffness) must not be reported as a frequency.
+    if (!(err < 1e-6))
+      throw std::runtime_error("eigen-analysis: eigenpair " + std::to_string(k + 1) + " (" + std::to_string(w) +
+                               " rad^2/s^2) did not converge (relative residual " + std::to_string(err) +
+                               "): the stiffness is singular, the system is a mechanism with rigid-body modes "
+                               "(a body or motion without support)");
     if (options.keepVectors) {
       Vec v;
       PetscCall(VecDuplicate(xr, &v));

@@ -15,6 +15,8 @@
 
 #include <cstdio>
 #include <exception>
+#include <new>
+#include <string>
 
 static const char help[] = "boomdyn SCENE.yaml [-o OUT.h5] [-boom_overwrite] [-boom_quiet] [-boom_elements N]\n"
                            "  [-boom_elements_<body> N] [-ts_dt h] [-ts_max_time T] [-boom_rho_inf r]\n"
@@ -22,23 +24,74 @@ static const char help[] = "boomdyn SCENE.yaml [-o OUT.h5] [-boom_overwrite] [-b
                            "  [-boom_tracking_interval dt] [-boom_checkpoint_interval dt] [-boom_checkpoint FILE]\n"
                            "  [-boom_restart FILE] [PETSc options]\n";
 
+namespace {
+
+// PETSc errors (a failed factorization, a bad option value, ...) are reported
+// as one line naming the scene, like every other error, instead of PETSc's
+// traceback and an MPI_Abort: the handler keeps the first message and lets
+// the error code travel up to main.
+std::string firstPetscError;
+
+PetscErrorCode keepFirstError(MPI_Comm, int line, const char *function, const char *file, PetscErrorCode n,
+                              PetscErrorType type, const char *message, void *)
+{
+  if (type == PETSC_ERROR_INITIAL && firstPetscError.empty()) {
+    const char *text = nullptr;
+    PetscErrorMessage(n, &text, nullptr);
+    firstPetscError = std::string(message && *message ? message : (text ? text : "PETSc error")) + " (in " +
+                      (function ? function : "?") + ", " + (file ? file : "?") + ":" + std::to_string(line) + ")";
+  }
+  return n;
+}
+
+// Messages that do not say which scene they are about get its name.
+std::string aboutScene(const std::string &message, const std::string &scene)
+{
+  return scene.empty() || message.find(scene) != std::string::npos ? message : scene + ": " + message;
+}
+
+} // namespace
+
 int main(int argc, char **argv)
 {
   PetscCall(PetscInitialize(&argc, &argv, nullptr, help));
+  PetscCall(PetscPushErrorHandler(keepFirstError, nullptr));
   int code = 0;
+  std::string scenePath;
   try {
     boomdyn::AppOptions opts;
-    PetscCall(boomdyn::readAppOptions(argc, argv, &opts));
-    boomdyn::Scene scene = boomdyn::readSceneFile(opts.scenePath);
-    PetscCall(boomdyn::applySceneOverrides(&scene));
-    boomdyn::installInterruptHandlers();
-    PetscCall(boomdyn::runScene(scene, opts, argc, argv));
+    PetscErrorCode ierr = boomdyn::readAppOptions(argc, argv, &opts);
+    scenePath = opts.scenePath;
+    if (!ierr) {
+      boomdyn::Scene scene = boomdyn::readSceneFile(opts.scenePath);
+      ierr = boomdyn::applySceneOverrides(&scene);
+      if (!ierr) {
+        boomdyn::installInterruptHandlers();
+        ierr = boomdyn::runScene(scene, opts, argc, argv);
+      }
+    }
+    if (ierr) {
+      // A failed LU factorization of the saddle-point system means it is singular.
+      std::string message = firstPetscError;
+      if (message.find("actorization") != std::string::npos || message.find("MUMPS") != std::string::npos ||
+          message.find("pivot") != std::string::npos)
+        message = "the system matrix is singular: a body or motion without support, or redundant or contradictory "
+                  "constraints (two drives on one joint, a clamp plus an angle drive at one point, ...); solver said: " +
+                  message;
+      PetscCall(PetscPrintf(PETSC_COMM_WORLD, "boomdyn: error: %s\n", aboutScene(message, scenePath).c_str()));
+      code = 1;
+    }
   } catch (const boomdyn::Interrupted &e) {
     PetscCall(PetscPrintf(PETSC_COMM_WORLD, "boomdyn: %s\n", e.what()));
     code = 128 + boomdyn::interruptSignal();
+  } catch (const std::bad_alloc &) {
+    PetscCall(PetscPrintf(PETSC_COMM_WORLD, "boomdyn: error: %s\n",
+                          aboutScene("out of memory: the scene needs more memory than this machine has "
+                                     "(a mesh too large? see -boom_elements)", scenePath).c_str()));
+    code = 1;
   } catch (const std::exception &e) {
     // Bad scenes and mechanisms: a clear message, a non-zero exit, no core dump.
-    PetscCall(PetscPrintf(PETSC_COMM_WORLD, "boomdyn: error: %s\n", e.what()));
+    PetscCall(PetscPrintf(PETSC_COMM_WORLD, "boomdyn: error: %s\n", aboutScene(e.what(), scenePath).c_str()));
     code = 1;
   }
   PetscBool slepc;

@@ -1,6 +1,7 @@
 #include "options.hpp"
 
 #include <cstring>
+#include <unistd.h>
 #include <stdexcept>
 #include <string>
 
@@ -73,6 +74,28 @@ PetscErrorCode applySceneOverrides(Scene *scene)
     require(b.elements >= 1 && b.elements <= 10000000,
             "-boom_elements: body '" + b.name + "' needs between 1 and 1e7 elements (got " + std::to_string(b.elements) + ")");
   }
+  // Every -boom_elements_<name> must name an ANCF body of this scene.
+  char *all;
+  PetscCall(PetscOptionsGetAll(nullptr, &all));
+  const std::string options = all;
+  PetscCall(PetscFree(all));
+  for (std::size_t pos = options.find("-boom_elements_"); pos != std::string::npos;
+       pos = options.find("-boom_elements_", pos + 1)) {
+    const std::size_t end = options.find_first_of(" \t", pos);
+    const std::string name = options.substr(pos + 15, end == std::string::npos ? std::string::npos : end - pos - 15);
+    bool found = false;
+    for (const BodySpec &b : scene->bodies) found = found || (b.name == name && b.type == BodySpec::Type::AncfBeam);
+    require(found, "-boom_elements_" + name + ": the scene has no ANCF beam named '" + name + "'");
+  }
+  // About 4 kB per element (Jacobian pattern and values, factorization,
+  // state vectors): refuse meshes that cannot fit before allocating them.
+  double elements = 0;
+  for (const BodySpec &b : scene->bodies) elements += b.type == BodySpec::Type::AncfBeam ? b.elements : 1;
+  const double available = double(sysconf(_SC_PHYS_PAGES)) * double(sysconf(_SC_PAGE_SIZE));
+  require(elements * 4096.0 < available,
+          "mesh too large for this machine's memory: " + std::to_string(static_cast<long long>(elements)) +
+            " elements need about " + std::to_string(static_cast<long long>(elements * 4096.0 / 1e9)) +
+            " GB, the machine has " + std::to_string(static_cast<long long>(available / 1e9)) + " GB");
   DynamicSpec &d = scene->dynamic;
   PetscCall(PetscOptionsGetReal(nullptr, nullptr, "-ts_dt", &r, &set));
   if (set) {

@@ -320,7 +320,7 @@ PetscErrorCode runScene(const Scene &scene, const AppOptions &opts, int argc, ch
     };
     PetscCall(statics.solve(scene.statics.time, scene.statics.load_steps, x, onLoadStep, &converged));
     PetscCall(out.appendState(scene.statics.time, x, zero, statics.multipliers()));
-    if (!converged) status = "failed: static solve did not converge";
+    if (!converged) status = "failed: " + statics.failure();
     if (converged && scene.modal.count > 0 && !modesAtStart)
       PetscCall(modalAnalysis(assembler, out, scene.statics.time, x, statics.multipliers(), scene.modal.count, opts.quiet));
     PetscCall(VecDestroy(&lambda0));
@@ -335,7 +335,8 @@ PetscErrorCode runScene(const Scene &scene, const AppOptions &opts, int argc, ch
     throw Interrupted("run interrupted at t = " + std::to_string(interruptedAt) + " s by signal " +
                       std::to_string(interruptSignal()) + "; results so far in " + opts.outputPath +
                       ", continue with -boom_restart " + opts.checkpointPath);
-  if (status != "completed") throw std::runtime_error("run " + status + " (results so far in " + opts.outputPath + ")");
+  if (status != "completed")
+    throw std::runtime_error(scene.file + ": run " + status + " (results so far in " + opts.outputPath + ")");
   PetscFunctionReturn(0);
 }
 

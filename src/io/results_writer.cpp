@@ -37,6 +37,16 @@ std::string utcNow()
 
 ResultsWriter::~ResultsWriter()
 {
+  // Left without finish() (an error unwound the run): the rows written so far
+  // stay, and the summary says the run did not complete.
+  if (file_ && file_->isOpen()) {
+    try {
+      file_->setAttribute("/summary", "status", std::string("failed: stopped by an error (see the program's output)"));
+      if (!snapshotTimes_.empty()) writeXdmf();
+      file_->close();
+    } catch (...) {
+    }
+  }
   if (toZero_) (void)VecScatterDestroy(&toZero_);
   if (gathered_) (void)VecDestroy(&gathered_);
 }

@@ -2,6 +2,9 @@
 
 #include "boomdyn/log_events.hpp"
 
+#include <stdexcept>
+#include <string>
+
 namespace boomdyn {
 
 AlphaParameters AlphaParameters::fromRhoInf(double rho)
@@ -97,10 +100,10 @@ PetscErrorCode GeneralizedAlpha::initialize(double t0, Vec q0, Vec v0)
   PetscCall(assembler_.setOffsets(q_, v_, nullptr));
   PetscCall(VecSet(x_, 0.0));
   PetscCall(newton_.solve(x_, &its, &reason));
-  PetscCheck(reason > 0, assembler_.comm(), PETSC_ERR_NOT_CONVERGED,
-             "consistent initial accelerations: the linear solve failed (%s); is the mechanism singular "
-             "(a body without supports or a redundant constraint)?",
-             SNESConvergedReasons[reason]);
+  if (reason <= 0)
+    throw std::runtime_error(std::string("the equations of motion are singular at t = 0 (") + SNESConvergedReasons[reason] +
+                             "): a body or a motion without support, or redundant or contradictory constraints "
+                             "(two drives on one joint, a clamp plus an angle drive at the same point, ...)");
   PetscCall(VecCopy(x_, qdd_));
   PetscCall(VecCopy(x_, a_));
   PetscCall(VecSet(lambda_, 0.0));

@@ -3,6 +3,7 @@
 #include "boomdyn/log_events.hpp"
 
 #include <algorithm>
+#include <string>
 
 namespace boomdyn {
 
@@ -15,6 +16,7 @@ StaticSolver::~StaticSolver()
 PetscErrorCode StaticSolver::setUp()
 {
   PetscFunctionBeginUser;
+  for (const auto &b : assembler_.model().bodies()) structureSize_ = std::max(structureSize_, b->length());
   PetscCall(assembler_.createVector(&lambda_));
   PetscCall(assembler_.createVector(&backup_));
   PetscCall(newton_.setUp(assembler_, "static_", 50));
@@ -47,6 +49,18 @@ PetscErrorCode StaticSolver::solve(double t, int loadSteps, Vec x,
     PetscInt its;
     SNESConvergedReason reason;
     PetscCall(newton_.solve(x, &its, &reason));
+    // A singular stiffness (a mechanism without supports, redundant
+    // constraints) can let Newton "converge" to absurd displacements: a
+    // solution a million times the structure's size is no equilibrium.
+    PetscReal size;
+    PetscCall(VecNorm(x, NORM_INFINITY, &size));
+    if (reason > 0 && !(size < 1e6 * (1.0 + structureSize_))) {
+      *converged = PETSC_FALSE;
+      failure_ = "no static equilibrium: the solution grew to " + std::to_string(size) +
+                 " (singular stiffness: a body or motion without support, or redundant constraints)";
+      PetscCall(VecCopy(backup_, x));
+      break;
+    }
     if (reason > 0) {
       done = target;
       if (onStep) PetscCall(onStep({done, its}));
@@ -61,8 +75,8 @@ PetscErrorCode StaticSolver::solve(double t, int loadSteps, Vec x,
                         SNESConvergedReasons[reason], increment));
     if (increment < minIncrement) {
       *converged = PETSC_FALSE;
-      PetscCall(PetscPrintf(assembler_.comm(), "static solve failed at load factor %g: %s\n", done + 2 * increment,
-                            SNESConvergedReasons[reason]));
+      failure_ = "static solve failed at load factor " + std::to_string(done + 2 * increment) + " (" +
+                 SNESConvergedReasons[reason] + ")";
       break;
     }
   }

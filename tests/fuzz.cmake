@@ -1,0 +1,31 @@
+# Robustness tests (GitHub issue 8); included at the end of tests/CMakeLists.txt.
+#
+# fuzz.scene_parser   libFuzzer on the scene reader for 60 s (clang++, ASan + UBSan),
+#                     built outside this (g++) project by tests/fuzz/run_fuzzer.sh into
+#                     ${CMAKE_BINARY_DIR}/fuzz; SKIPPED when there is no clang++.
+# bad_input.models    every scene in tests/bad_model/ is refused cleanly by boomdyn
+#                     (tests/bad_model/run_bad_models.py).
+# See docs/reliability.md.
+
+add_test(NAME fuzz.scene_parser
+  COMMAND bash ${CMAKE_SOURCE_DIR}/tests/fuzz/run_fuzzer.sh ${CMAKE_SOURCE_DIR} ${CMAKE_BINARY_DIR})
+set_tests_properties(fuzz.scene_parser PROPERTIES
+  LABELS fuzz SKIP_RETURN_CODE 77 TIMEOUT 600
+  PROCESSORS 1) # one fuzzing process (FUZZ_JOBS=n for more, outside CTest)
+
+# ASan reserves terabytes of address space, so a sanitizer build cannot run under the
+# runner's address-space limit (--mem-mb); ASan's own RSS limit takes its place, and leaks
+# of the aborted runs are not reported (the corpus is about messages, not memory).
+set(bad_model_args "")
+set(bad_model_env "")
+if(BOOMDYN_SANITIZE)
+  set(bad_model_args --mem-mb 0)
+  set(bad_model_env "ASAN_OPTIONS=detect_leaks=0:hard_rss_limit_mb=4096")
+endif()
+add_test(NAME bad_input.models
+  COMMAND /usr/bin/python3 ${CMAKE_SOURCE_DIR}/tests/bad_model/run_bad_models.py
+          --boomdyn $<TARGET_FILE:boomdyn> ${bad_model_args})
+set_tests_properties(bad_input.models PROPERTIES LABELS bad_input TIMEOUT 900)
+if(bad_model_env)
+  set_tests_properties(bad_input.models PROPERTIES ENVIRONMENT "${bad_model_env}")
+endif()
