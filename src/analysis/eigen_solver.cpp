@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numeric>
+#include <cstdio>
 #include <stdexcept>
 #include <string>
 
@@ -112,10 +113,13 @@ PetscErrorCode solveModes(Assembler &assembler, double t, Vec q, Vec lambda, int
     // An eigenpair that did not converge (rigid-body modes of a mechanism:
     // a singular stiffness) must not be reported as a frequency.
     if (!(err < 1e-6))
-      throw std::runtime_error("eigen-analysis: eigenpair " + std::to_string(k + 1) + " (" + std::to_string(w) +
-                               " rad^2/s^2) did not converge (relative residual " + std::to_string(err) +
+    {
+      char values[96];
+      std::snprintf(values, sizeof values, "%.3g rad^2/s^2) did not converge (relative residual %.3g", (double)w, (double)err);
+      throw std::runtime_error("eigen-analysis: eigenpair " + std::to_string(k + 1) + " (" + values +
                                "): the stiffness is singular, the system is a mechanism with rigid-body modes "
                                "(a body or motion without support)");
+    }
     if (options.keepVectors) {
       Vec v;
       PetscCall(VecDuplicate(xr, &v));

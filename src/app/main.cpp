@@ -94,6 +94,7 @@ int main(int argc, char **argv)
     PetscCall(PetscPrintf(PETSC_COMM_WORLD, "boomdyn: error: %s\n", aboutScene(e.what(), scenePath).c_str()));
     code = 1;
   }
+  PetscCall(PetscPopErrorHandler()); // pushed above; unpopped it shows in -malloc_dump
   PetscBool slepc;
   PetscCall(SlepcInitialized(&slepc));
   if (slepc) PetscCall(SlepcFinalize());

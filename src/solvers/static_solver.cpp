@@ -3,6 +3,7 @@
 #include "boomdyn/log_events.hpp"
 
 #include <algorithm>
+#include <cstdio>
 #include <string>
 
 namespace boomdyn {
@@ -56,7 +57,9 @@ PetscErrorCode StaticSolver::solve(double t, int loadSteps, Vec x,
     PetscCall(VecNorm(x, NORM_INFINITY, &size));
     if (reason > 0 && !(size < 1e6 * (1.0 + structureSize_))) {
       *converged = PETSC_FALSE;
-      failure_ = "no static equilibrium: the solution grew to " + std::to_string(size) +
+      char grown[32];
+      std::snprintf(grown, sizeof grown, "%.3g", (double)size);
+      failure_ = std::string("no static equilibrium: the solution grew to ") + grown +
                  " (singular stiffness: a body or motion without support, or redundant constraints)";
       PetscCall(VecCopy(backup_, x));
       break;
