@@ -33,38 +33,19 @@ add_test(NAME postprocess.plot_run
   WORKING_DIRECTORY ${CMAKE_BINARY_DIR})
 set_tests_properties(postprocess.plot_run PROPERTIES LABELS postprocess)
 
-add_test(NAME postprocess.frame_deflection
-  COMMAND ${python} ${CMAKE_SOURCE_DIR}/tests/postprocess/test_frame_deflection.py $<TARGET_FILE:boomdyn>
-          ${CMAKE_SOURCE_DIR} ${CMAKE_BINARY_DIR})
-set_tests_properties(postprocess.frame_deflection PROPERTIES LABELS postprocess)
+# Scripts that run the boomdyn binary: SCRIPT BOOMDYN SOURCE_DIR BINARY_DIR.
+function(boomdyn_script_test name script label)
+  add_test(NAME ${name}
+    COMMAND ${python} ${CMAKE_SOURCE_DIR}/tests/${script} $<TARGET_FILE:boomdyn> ${CMAKE_SOURCE_DIR} ${CMAKE_BINARY_DIR})
+  set_tests_properties(${name} PROPERTIES LABELS "${label}")
+endfunction()
 
-add_test(NAME postprocess.frequency_check
-  COMMAND ${python} ${CMAKE_SOURCE_DIR}/tests/postprocess/test_frequency_check.py $<TARGET_FILE:boomdyn>
-          ${CMAKE_SOURCE_DIR} ${CMAKE_BINARY_DIR})
-set_tests_properties(postprocess.frequency_check PROPERTIES LABELS postprocess)
-
-add_test(NAME postprocess.stick_slip_scene
-  COMMAND ${python} ${CMAKE_SOURCE_DIR}/tests/postprocess/test_stick_slip_scene.py $<TARGET_FILE:boomdyn>
-          ${CMAKE_SOURCE_DIR} ${CMAKE_BINARY_DIR})
-set_tests_properties(postprocess.stick_slip_scene PROPERTIES LABELS postprocess)
-
-add_test(NAME regression.restart
-  COMMAND ${python} ${CMAKE_SOURCE_DIR}/tests/regression/test_restart.py $<TARGET_FILE:boomdyn>
-          ${CMAKE_SOURCE_DIR} ${CMAKE_BINARY_DIR})
-set_tests_properties(regression.restart PROPERTIES LABELS "regression;mpi" PROCESSORS 2
+boomdyn_script_test(postprocess.frame_deflection postprocess/test_frame_deflection.py postprocess)
+boomdyn_script_test(postprocess.frequency_check postprocess/test_frequency_check.py postprocess)
+boomdyn_script_test(postprocess.stick_slip_scene postprocess/test_stick_slip_scene.py postprocess)
+boomdyn_script_test(postprocess.snapshots postprocess/test_snapshots.py postprocess)
+boomdyn_script_test(postprocess.paper_comparison_figures postprocess/test_paper_comparison.py postprocess)
+boomdyn_script_test(postprocess.xdmf postprocess/test_xdmf.py postprocess)
+boomdyn_script_test(regression.restart regression/test_restart.py "regression;mpi")
+set_tests_properties(regression.restart PROPERTIES PROCESSORS 2
   ENVIRONMENT "OMPI_ALLOW_RUN_AS_ROOT=1;OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1")
-
-add_test(NAME postprocess.snapshots
-  COMMAND ${python} ${CMAKE_SOURCE_DIR}/tests/postprocess/test_snapshots.py $<TARGET_FILE:boomdyn>
-          ${CMAKE_SOURCE_DIR} ${CMAKE_BINARY_DIR})
-set_tests_properties(postprocess.snapshots PROPERTIES LABELS postprocess)
-
-add_test(NAME postprocess.paper_comparison_figures
-  COMMAND ${python} ${CMAKE_SOURCE_DIR}/tests/postprocess/test_paper_comparison.py $<TARGET_FILE:boomdyn>
-          ${CMAKE_SOURCE_DIR} ${CMAKE_BINARY_DIR})
-set_tests_properties(postprocess.paper_comparison_figures PROPERTIES LABELS postprocess)
-
-add_test(NAME postprocess.xdmf
-  COMMAND ${python} ${CMAKE_SOURCE_DIR}/tests/postprocess/test_xdmf.py $<TARGET_FILE:boomdyn>
-          ${CMAKE_SOURCE_DIR} ${CMAKE_BINARY_DIR})
-set_tests_properties(postprocess.xdmf PROPERTIES LABELS postprocess)
