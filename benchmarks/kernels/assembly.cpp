@@ -1,0 +1,140 @@
+// Assembly micro-benchmarks: Assembler::evaluate (residual only; residual +
+// Jacobian) on the cantilever of inputs/cantilever_dynamic.yaml with N
+// elements, in a generalized-α iteration context at a deformed state, and,
+// for comparison, the bare loop over the work items' evaluate() with their
+// values gathered beforehand (no scatter, no COO insertion). Times are
+// reported per call and per element (counter `per_element`).
+#include "bench_support.hpp"
+
+#include "boomdyn/assembler.hpp"
+
+#include <benchmark/benchmark.h>
+
+#include <algorithm>
+#include <map>
+#include <memory>
+
+using namespace boomdyn;
+
+namespace boomdyn::bench {
+
+namespace {
+
+struct AssemblyFixture {
+  explicit AssemblyFixture(const Scene &scene) : model(scene), assembler(model) {}
+  ~AssemblyFixture()
+  {
+    if (x) (void)VecDestroy(&x);
+    if (F) (void)VecDestroy(&F);
+    if (J) (void)MatDestroy(&J);
+  }
+  Model model;
+  Assembler assembler;
+  GlobalState state;
+  Vec x = nullptr, F = nullptr;
+  Mat J = nullptr;
+  std::vector<ItemBuffers> items; // for the bare item loop
+  int elements = 0;
+};
+
+// Built once per size and kept: Google Benchmark calls a benchmark function
+// several times (to pick the iteration count), and setting up 65536 elements
+// is far slower than one evaluation.
+std::map<int, std::unique_ptr<AssemblyFixture>> &fixtures()
+{
+  static std::map<int, std::unique_ptr<AssemblyFixture>> f;
+  return f;
+}
+
+AssemblyFixture &cantilever(int elements)
+{
+  auto &slot = fixtures()[elements];
+  if (slot) return *slot;
+  Scene scene = sceneFromFile("inputs/cantilever_dynamic.yaml");
+  scene.bodies.at(0).elements = elements;
+  slot = std::make_unique<AssemblyFixture>(scene);
+  AssemblyFixture &f = *slot;
+  f.elements = elements;
+  f.state = deformedState(f.model);
+  PetscCallAbort(PETSC_COMM_WORLD, f.assembler.setUp(PETSC_COMM_WORLD));
+  PetscCallAbort(PETSC_COMM_WORLD, f.assembler.createVector(&f.x));
+  PetscCallAbort(PETSC_COMM_WORLD, f.assembler.createVector(&f.F));
+  PetscCallAbort(PETSC_COMM_WORLD, f.assembler.createMatrix(&f.J));
+  PetscCallAbort(PETSC_COMM_WORLD, f.assembler.setOffsets(nullptr, nullptr, nullptr));
+  // x = the deformed state (one rank: the local array is the whole vector).
+  PetscScalar *xa;
+  PetscInt lo, hi;
+  PetscCallAbort(PETSC_COMM_WORLD, VecGetOwnershipRange(f.x, &lo, &hi));
+  PetscCallAbort(PETSC_COMM_WORLD, VecGetArray(f.x, &xa));
+  for (PetscInt i = lo; i < hi; ++i) xa[i - lo] = f.state.x[i];
+  PetscCallAbort(PETSC_COMM_WORLD, VecRestoreArray(f.x, &xa));
+  // One warm-up evaluation (first MatSetValuesCOO, page faults of the buffers).
+  PetscCallAbort(PETSC_COMM_WORLD, f.assembler.evaluate(dynamicContext(), f.x, f.F, f.J));
+  for (const auto &item : f.model.items()) f.items.push_back(gatherItem(*item, f.state));
+  return f;
+}
+
+void perElement(benchmark::State &state, int elements)
+{
+  // Inverted rate: seconds per element (printed with an SI prefix, e.g. "55n s").
+  state.counters["per_element"] =
+    benchmark::Counter(static_cast<double>(elements), benchmark::Counter::kIsIterationInvariantRate |
+                                                          benchmark::Counter::kInvert);
+  state.counters["unknowns"] = static_cast<double>(cantilever(elements).model.size());
+}
+
+void BM_Assembly_Residual(benchmark::State &state)
+{
+  const int n = static_cast<int>(state.range(0));
+  AssemblyFixture &f = cantilever(n);
+  const AssemblyContext ctx = dynamicContext();
+  for (auto _ : state) PetscCallAbort(PETSC_COMM_WORLD, f.assembler.evaluate(ctx, f.x, f.F, nullptr));
+  perElement(state, n);
+}
+
+void BM_Assembly_ResidualJacobian(benchmark::State &state)
+{
+  const int n = static_cast<int>(state.range(0));
+  AssemblyFixture &f = cantilever(n);
+  const AssemblyContext ctx = dynamicContext();
+  for (auto _ : state) PetscCallAbort(PETSC_COMM_WORLD, f.assembler.evaluate(ctx, f.x, f.F, f.J));
+  perElement(state, n);
+}
+
+// The work items alone: what the assembler's loop costs without the scatter,
+// the gather and the insertion into PETSc.
+void itemLoop(benchmark::State &state, bool jacobian)
+{
+  const int n = static_cast<int>(state.range(0));
+  AssemblyFixture &f = cantilever(n);
+  const AssemblyContext ctx = dynamicContext();
+  for (auto _ : state) {
+    for (ItemBuffers &b : f.items) {
+      std::fill(b.residual.begin(), b.residual.end(), 0.0);
+      if (jacobian) std::fill(b.J.begin(), b.J.end(), 0.0);
+      b.item->evaluate(ctx, b.values(), b.residual.data(), jacobian ? b.J.data() : nullptr);
+    }
+    benchmark::ClobberMemory();
+  }
+  perElement(state, n);
+}
+
+void BM_ItemsOnly_Residual(benchmark::State &state) { itemLoop(state, false); }
+void BM_ItemsOnly_ResidualJacobian(benchmark::State &state) { itemLoop(state, true); }
+
+void sizes(benchmark::internal::Benchmark *b)
+{
+  for (int n : {16, 256, 4096, 65536}) b->Arg(n);
+  b->Unit(benchmark::kMicrosecond);
+}
+
+} // namespace
+
+BENCHMARK(BM_Assembly_Residual)->Apply(sizes);
+BENCHMARK(BM_Assembly_ResidualJacobian)->Apply(sizes);
+BENCHMARK(BM_ItemsOnly_Residual)->Apply(sizes);
+BENCHMARK(BM_ItemsOnly_ResidualJacobian)->Apply(sizes);
+
+void releaseAssemblyFixtures() { fixtures().clear(); }
+
+} // namespace boomdyn::bench
