@@ -23,6 +23,7 @@ struct CenterlineLocation {
   int element = 0;                // element index (beams), 0 for rigid bodies
   double xi = 0;                  // local parameter in the element
   double s = 0;                   // material coordinate
+  double begin = 0, end = 0;      // material span of the element
 };
 
 // r, r_s, r_ss, r_sss at s and their (linear) derivatives with respect to

@@ -1,7 +1,17 @@
 // SNES on the assembled saddle-point system, shared by statics, dynamics and
 // the consistent-acceleration solve. Defaults: Newton with a basic (full)
-// step, KSPPREONLY + LU from MUMPS; every one of them can be changed with
-// the usual -snes_/-ksp_/-pc_ options under the solver's prefix.
+// step, KSPPREONLY + LU (KLU on one rank, MUMPS on several); every one of
+// them can be changed with the usual -snes_/-ksp_/-pc_ options under the
+// solver's prefix.
+//
+// Optional Jacobian reuse (modified Newton, -boom_jacobian_reuse): the
+// factored iteration matrix is kept across Newton iterations and across
+// solves, and rebuilt only when it no longer contracts the residual well
+// enough, when the iteration coefficients change (a new step size or another
+// kind of solve), when the sparsity pattern changes, or when it is older
+// than a given number of solves. A solve that fails with an old matrix is
+// retried once from the same initial guess with a fresh one, so reuse never
+// turns a solvable step into a rejected one.
 #pragma once
 
 #include "boomdyn/assembler.hpp"
@@ -10,6 +20,18 @@
 
 namespace boomdyn {
 
+struct JacobianReuse {
+  bool enabled = false;
+  // Rebuild when |F_k| / |F_{k-1}| exceeds this (a stale matrix contracts slowly).
+  double refreshRatio = 0.25;
+  // Rebuild after this many solves with one matrix (0: no limit).
+  PetscInt maxAge = 0;
+};
+
+struct NewtonStatistics {
+  PetscInt solves = 0, iterations = 0, jacobians = 0, retriesWithFreshJacobian = 0;
+};
+
 class NewtonSolver {
 public:
   NewtonSolver() = default;
@@ -17,24 +39,40 @@ public:
   NewtonSolver(const NewtonSolver &) = delete;
   NewtonSolver &operator=(const NewtonSolver &) = delete;
 
-  // prefix may be null (then -snes_monitor etc. apply directly).
+  // prefix may be null (then -snes_monitor etc. apply directly). Reads
+  // -boom_jacobian_reuse, -boom_jacobian_refresh_ratio, -boom_jacobian_max_age.
   PetscErrorCode setUp(Assembler &assembler, const char *prefix, PetscInt maxIterations);
   // Solve from the initial guess in x; the solution overwrites x.
   PetscErrorCode solve(Vec x, PetscInt *iterations, SNESConvergedReason *reason);
+  // The next solve starts with a fresh Jacobian.
+  void invalidateJacobian() { jacobianValid_ = false; }
 
   AssemblyContext ctx; // set by the caller before solve()
   SNES snes() const { return snes_; }
   Mat jacobian() const { return J_; }
+  const JacobianReuse &reuse() const { return reuse_; }
+  const NewtonStatistics &statistics() const { return stats_; }
 
 private:
   static PetscErrorCode formFunction(SNES, Vec x, Vec F, void *self);
   static PetscErrorCode formJacobian(SNES, Vec x, Mat J, Mat P, void *self);
+  static PetscErrorCode convergenceTest(SNES, PetscInt it, PetscReal xnorm, PetscReal snorm, PetscReal fnorm,
+                                        SNESConvergedReason *reason, void *self);
+  PetscErrorCode solveOnce(Vec x, PetscInt *iterations, SNESConvergedReason *reason);
+  bool sameIterationMatrix(const AssemblyContext &a, const AssemblyContext &b) const;
 
   Assembler *assembler_ = nullptr;
   int patternVersion_ = 0;
   SNES snes_ = nullptr;
   Mat J_ = nullptr;
-  Vec F_ = nullptr;
+  Vec F_ = nullptr, x0_ = nullptr;
+  JacobianReuse reuse_;
+  NewtonStatistics stats_;
+  bool jacobianValid_ = false;   // J_ holds a factored matrix usable for ctx
+  bool jacobianFresh_ = false;   // J_ was built during the current solve
+  AssemblyContext jacobianCtx_;  // coefficients J_ was built with
+  PetscInt jacobianAge_ = 0;     // solves since J_ was built
+  PetscReal previousFnorm_ = 0;
 };
 
 } // namespace boomdyn

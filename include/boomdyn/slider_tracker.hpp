@@ -8,6 +8,7 @@
 #include "boomdyn/assembler.hpp"
 
 #include <string>
+#include <vector>
 
 namespace boomdyn {
 
@@ -22,6 +23,11 @@ public:
   // relocated: some joint changed element (pattern rebuilt: redo the solve);
   // offTrack: non-empty message if a slider left its track.
   PetscErrorCode update(Vec x, double t, bool *relocated, std::string *offTrack);
+  // Material coordinates that define each joint's current track element
+  // (for checkpoints), and the inverse: put the joints back on those elements
+  // (collective: rebuilds the pattern).
+  std::vector<double> locations() const;
+  PetscErrorCode setLocations(const std::vector<double> &s);
   bool active() const { return !assembler_.model().slidingJoints().empty(); }
 
 private:

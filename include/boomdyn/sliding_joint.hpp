@@ -36,8 +36,16 @@ public:
   double sliderPoint() const { return xP_; }
   const CenterlineLocation &trackLocation() const { return trackLoc_; }
   const CenterlineLocation &sliderLocation() const { return sliderLoc_; }
-  // Element of the track that holds s; true if it changed.
+  // Moves the joint to the element of the track that holds s; true if it
+  // changed. A contact point stays with its element until it is more than
+  // a small fraction of the element length past its end: the centerline is
+  // C1 across nodes, so evaluating the element a little outside its span is
+  // accurate, and without this band a joint resting on a node would switch
+  // elements (and the solver its sparsity pattern) at every vibration.
   bool relocate(double s);
+  static constexpr double relocationHysteresis = 1e-3; // of the element length
+  // Puts the contact point on the element that holds s, unconditionally (restarts).
+  void setTrackLocation(double s) { trackLoc_ = track_->locate(s); }
   // True when s lies in [0, track length].
   bool onTrack(double s) const { return s >= 0.0 && s <= track_->length(); }
 

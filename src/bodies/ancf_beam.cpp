@@ -35,6 +35,8 @@ CenterlineLocation AncfBeam::locate(double s) const
   loc.element = el;
   loc.s = s;
   loc.xi = (s - el * l) / l;
+  loc.begin = el * l;
+  loc.end = (el + 1) * l;
   for (int k = 0; k < 8; ++k) loc.dofs[k] = elementDof(el, k);
   return loc;
 }

@@ -9,6 +9,9 @@ namespace {
 
 struct GaussRule {
   std::array<double, kGaussPoints> xi, w; // on [0, 1]
+  // First and second shape derivatives at the points for l = 1: for length l
+  // they scale by (1/l, 1, 1/l, 1) and (1/l^2, 1/l, 1/l^2, 1/l).
+  std::array<Eigen::Vector4d, kGaussPoints> ds1, ds2;
 };
 
 const GaussRule &gaussRule()
@@ -25,6 +28,8 @@ const GaussRule &gaussRule()
     for (int i = 0; i < 5; ++i) {
       r.xi[i] = 0.5 * (x[i] + 1.0);
       r.w[i] = 0.5 * w[i];
+      r.ds1[i] = shapeValues(r.xi[i], 1.0, 1);
+      r.ds2[i] = shapeValues(r.xi[i], 1.0, 2);
     }
     return r;
   }();
@@ -138,48 +143,53 @@ double strainEnergy(const Section &sec, double l, const Vec8 &e)
 void internalForce(const Section &sec, double l, const Vec8 &e, Vec8 &f, Mat8 *Kt)
 {
   const GaussRule &g = gaussRule();
-  f.setZero();
-  if (Kt) Kt->setZero();
-  for (int p = 0; p < kGaussPoints; ++p) {
-    const Eigen::Vector4d s1 = shapeValues(g.xi[p], l, 1), s2 = shapeValues(g.xi[p], l, 2);
-    Vec2 r1 = Vec2::Zero(), r2 = Vec2::Zero();
-    for (int k = 0; k < 4; ++k) {
-      r1 += s1[k] * e.segment<2>(2 * k);
-      r2 += s2[k] * e.segment<2>(2 * k);
-    }
-    const double wx = g.w[p] * l; // dx weight
-    const double J2 = r1.squaredNorm();
-    const double eps = 0.5 * (J2 - 1.0);
-    const double c = cross(r1, r2);
-    const double K = c / J2;
-    // First derivatives: d eps/de = S'^T r', dc/de = S'^T W r'' + S''^T W^T r'.
-    const Vec8 dEps = expand(s1, r1);
-    const Vec8 dc = expand(s1, rotCW(r2)) - expand(s2, rotCW(r1));
-    const Vec8 dK = (dc - 2.0 * K * dEps) / J2; // dJ2/de = 2 dEps
-    f += wx * (sec.EA * eps * dEps + sec.EI * K * dK);
-    if (!Kt) continue;
-    // Second derivatives. d2eps = S'^T S'; d2c = S'^T W S'' + S''^T W^T S';
-    // d2K = (d2c - dK dJ2^T - dJ2 dK^T - K d2J2) / J2 with dJ2 = 2 dEps, d2J2 = 2 S'^T S'.
-    // Only the scalar 4x4 "shape" parts differ, so build them per direction pair.
-    Eigen::Matrix4d s11 = s1 * s1.transpose();
-    Eigen::Matrix4d s12 = s1 * s2.transpose(); // multiplies W: (0,1) -> +, (1,0) -> -
-    Mat8 d2eps = Mat8::Zero(), d2c = Mat8::Zero();
-    for (int a = 0; a < 4; ++a)
-      for (int b = 0; b < 4; ++b) {
-        d2eps(2 * a, 2 * b) = s11(a, b);
-        d2eps(2 * a + 1, 2 * b + 1) = s11(a, b);
-        // S'^T W S'' : entry (a,i),(b,j) = s1_a W_ij s2_b with W = [[0,1],[-1,0]]
-        const double m = s12(a, b);
-        d2c(2 * a, 2 * b + 1) += m;
-        d2c(2 * a + 1, 2 * b) -= m;
-        // + its transpose
-        d2c(2 * b + 1, 2 * a) += m;
-        d2c(2 * b, 2 * a + 1) -= m;
-      }
-    const Mat8 d2K = (d2c - 2.0 * (dK * dEps.transpose() + dEps * dK.transpose()) - 2.0 * K * d2eps) / J2;
-    Kt->noalias() += wx * (sec.EA * (dEps * dEps.transpose() + eps * d2eps) +
-                           sec.EI * (dK * dK.transpose() + K * d2K));
+  // e as 2x4: column k is the node vector e.segment<2>(2k); likewise f.
+  const Eigen::Map<const Eigen::Matrix<double, 2, 4>> E(e.data());
+  Eigen::Matrix<double, 2, 4> F = Eigen::Matrix<double, 2, 4>::Zero();
+  // With a = EA eps - 2 EI K^2 / J2 and b = EI K / J2 (dK = (dc - 2 K dEps) / J2),
+  //   f  = sum wx (a dEps + b dc),
+  //   Kt = sum wx (EA dEps dEps^T + EI dK dK^T - 2b (dK dEps^T + dEps dK^T) + a d2eps + b d2c),
+  // where d2eps = S'^T S' = (s1 s1^T) ⊗ I and d2c = S'^T W S'' + S''^T W^T S' = (s1 s2^T - s2 s1^T) ⊗ W
+  // only depend on the shape functions: their scalar 4x4 parts are summed
+  // over the Gauss points (P, Q) and expanded once at the end.
+  Eigen::Matrix4d P, Q;
+  if (Kt) {
+    P.setZero(), Q.setZero();
+    Kt->setZero();
   }
+  const double il = 1.0 / l;
+  for (int p = 0; p < kGaussPoints; ++p) {
+    const Eigen::Vector4d s1 = g.ds1[p].cwiseProduct(Eigen::Vector4d(il, 1.0, il, 1.0));
+    const Eigen::Vector4d s2 = g.ds2[p].cwiseProduct(Eigen::Vector4d(il * il, il, il * il, il));
+    const Vec2 r1 = E * s1, r2 = E * s2;
+    const double wx = g.w[p] * l; // dx weight
+    const double J2 = r1.squaredNorm(), iJ2 = 1.0 / J2;
+    const double eps = 0.5 * (J2 - 1.0);
+    const double K = cross(r1, r2) * iJ2;
+    const double a = sec.EA * eps - 2.0 * sec.EI * K * K * iJ2, b = sec.EI * K * iJ2;
+    // dEps = s1 ⊗ r1, dc = s1 ⊗ W r2 - s2 ⊗ W r1.
+    F.noalias() += (wx * (a * r1 + b * rotCW(r2))) * s1.transpose() - (wx * b * rotCW(r1)) * s2.transpose();
+    if (!Kt) continue;
+    const Vec8 dEps = expand(s1, r1);
+    const Vec8 dK = (expand(s1, rotCW(r2)) - expand(s2, rotCW(r1)) - 2.0 * K * dEps) * iJ2;
+    Eigen::Matrix<double, 8, 2> G;
+    G << dEps, dK;
+    Eigen::Matrix2d Mw;
+    Mw << wx * sec.EA, -2.0 * wx * b, -2.0 * wx * b, wx * sec.EI;
+    Kt->noalias() += G * Mw * G.transpose();
+    P.noalias() += (wx * a) * s1 * s1.transpose();
+    Q.noalias() += (wx * b) * (s1 * s2.transpose() - s2 * s1.transpose());
+  }
+  Eigen::Map<Eigen::Matrix<double, 2, 4>>(f.data()) = F;
+  if (!Kt) return;
+  // Expand: (P ⊗ I) + (Q ⊗ W) with W = [[0, 1], [-1, 0]].
+  for (int a = 0; a < 4; ++a)
+    for (int b = 0; b < 4; ++b) {
+      (*Kt)(2 * a, 2 * b) += P(a, b);
+      (*Kt)(2 * a + 1, 2 * b + 1) += P(a, b);
+      (*Kt)(2 * a, 2 * b + 1) += Q(a, b);
+      (*Kt)(2 * a + 1, 2 * b) -= Q(a, b);
+    }
 }
 
 Vec8 straightElement(const Vec2 &p0, const Vec2 &dir, double l)

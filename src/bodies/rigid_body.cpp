@@ -20,6 +20,7 @@ CenterlineLocation RigidBody::locate(double s) const
   CenterlineLocation loc;
   loc.count = 3;
   loc.s = s;
+  loc.end = length_;
   for (int k = 0; k < 3; ++k) loc.dofs[k] = first_ + k;
   return loc;
 }

@@ -47,7 +47,10 @@ void SlidingJoint::coordinates(std::vector<PetscInt> &dofs) const
 
 bool SlidingJoint::relocate(double s)
 {
-  const CenterlineLocation loc = track_->locate(std::clamp(s, 0.0, track_->length()));
+  const double sc = std::clamp(s, 0.0, track_->length());
+  const double band = relocationHysteresis * (trackLoc_.end - trackLoc_.begin);
+  if (sc >= trackLoc_.begin - band && sc <= trackLoc_.end + band) return false;
+  const CenterlineLocation loc = track_->locate(sc);
   if (loc.element == trackLoc_.element) return false;
   trackLoc_ = loc;
   return true;

@@ -43,10 +43,32 @@ PetscErrorCode SliderTracker::update(Vec x, double t, bool *relocated, std::stri
       *offTrack = os.str();
       break;
     }
-    if (joints[k]->relocate(s[k])) *relocated = true;
+    if (joints[k]->relocate(s[k])) {
+      *relocated = true;
+      PetscCall(PetscInfo(nullptr, "t = %g s: sliding joint '%s' moves to element %d of '%s' (s = %.12g m)\n", t,
+                          joints[k]->name().c_str(), joints[k]->trackLocation().element, joints[k]->track().name().c_str(), s[k]));
+    }
   }
   PetscCall(VecRestoreArrayRead(slacks_, &s));
   if (*relocated && offTrack->empty()) PetscCall(assembler_.rebuildPattern());
+  PetscFunctionReturn(0);
+}
+
+std::vector<double> SliderTracker::locations() const
+{
+  std::vector<double> s;
+  for (const auto &j : assembler_.model().slidingJoints()) s.push_back(j->trackLocation().s);
+  return s;
+}
+
+PetscErrorCode SliderTracker::setLocations(const std::vector<double> &s)
+{
+  PetscFunctionBeginUser;
+  const auto &joints = assembler_.model().slidingJoints();
+  PetscCheck(s.size() == joints.size(), assembler_.comm(), PETSC_ERR_FILE_UNEXPECTED,
+             "restart file has %zu sliding joint locations, the scene %zu", s.size(), joints.size());
+  for (std::size_t k = 0; k < joints.size(); ++k) joints[k]->setTrackLocation(s[k]);
+  if (!joints.empty()) PetscCall(assembler_.rebuildPattern());
   PetscFunctionReturn(0);
 }
 

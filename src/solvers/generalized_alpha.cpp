@@ -189,13 +189,12 @@ PetscErrorCode GeneralizedAlpha::save(CheckpointWriter &out) const
   PetscCall(out.addVector("a", a_));
   PetscCall(out.addVector("lambda", lambda_));
   out.addScalar("t", t_);
+  out.addArray("slider_locations", sliders_.locations());
   PetscFunctionReturn(0);
 }
 
 PetscErrorCode GeneralizedAlpha::restore(const CheckpointReader &in)
 {
-  bool relocated;
-  std::string offTrack;
   PetscFunctionBeginUser;
   PetscCall(in.getVector("q", q_));
   PetscCall(in.getVector("v", v_));
@@ -203,7 +202,10 @@ PetscErrorCode GeneralizedAlpha::restore(const CheckpointReader &in)
   PetscCall(in.getVector("a", a_));
   PetscCall(in.getVector("lambda", lambda_));
   t_ = in.scalar("t");
-  PetscCall(sliders_.update(q_, t_, &relocated, &offTrack));
+  // The joints' elements as they were, not as a fresh search would choose
+  // them within the relocation band: restarts continue bitwise.
+  PetscCall(sliders_.setLocations(in.array("slider_locations")));
+  newton_.invalidateJacobian();
   PetscFunctionReturn(0);
 }
 

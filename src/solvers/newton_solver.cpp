@@ -2,6 +2,8 @@
 
 #include "boomdyn/direct_solver.hpp"
 
+#include <cmath>
+
 namespace boomdyn {
 
 NewtonSolver::~NewtonSolver()
@@ -9,6 +11,7 @@ NewtonSolver::~NewtonSolver()
   if (snes_) (void)SNESDestroy(&snes_);
   if (J_) (void)MatDestroy(&J_);
   if (F_) (void)VecDestroy(&F_);
+  if (x0_) (void)VecDestroy(&x0_);
 }
 
 PetscErrorCode NewtonSolver::setUp(Assembler &assembler, const char *prefix, PetscInt maxIterations)
@@ -20,6 +23,7 @@ PetscErrorCode NewtonSolver::setUp(Assembler &assembler, const char *prefix, Pet
   patternVersion_ = assembler.patternVersion();
   PetscCall(assembler.createMatrix(&J_));
   PetscCall(assembler.createVector(&F_));
+  PetscCall(assembler.createVector(&x0_));
   PetscCall(SNESCreate(assembler.comm(), &snes_));
   if (prefix) PetscCall(SNESSetOptionsPrefix(snes_, prefix));
   PetscCall(SNESSetFunction(snes_, F_, formFunction, this));
@@ -39,8 +43,37 @@ PetscErrorCode NewtonSolver::setUp(Assembler &assembler, const char *prefix, Pet
   PetscCall(SNESSetDivergenceTolerance(snes_, -1.0));
   PetscCall(SNESGetKSP(snes_, &ksp));
   PetscCall(useDirectSolver(ksp));
+
+  PetscOptionsBegin(assembler.comm(), prefix, "Newton iteration matrix reuse", "boomdyn");
+  PetscBool enabled = reuse_.enabled ? PETSC_TRUE : PETSC_FALSE;
+  PetscCall(PetscOptionsBool("-boom_jacobian_reuse",
+                             "Keep the factored Jacobian across iterations and steps (modified Newton)", "", enabled,
+                             &enabled, nullptr));
+  reuse_.enabled = enabled;
+  PetscCall(PetscOptionsReal("-boom_jacobian_refresh_ratio",
+                             "Rebuild the Jacobian when |F_k|/|F_k-1| exceeds this", "", reuse_.refreshRatio,
+                             &reuse_.refreshRatio, nullptr));
+  PetscCall(PetscOptionsInt("-boom_jacobian_max_age", "Rebuild the Jacobian after this many solves (0: never)", "",
+                            reuse_.maxAge, &reuse_.maxAge, nullptr));
+  PetscOptionsEnd();
+  PetscCheck(reuse_.refreshRatio > 0 && reuse_.refreshRatio < 1, assembler.comm(), PETSC_ERR_USER_INPUT,
+             "-boom_jacobian_refresh_ratio must lie in (0, 1), got %g", (double)reuse_.refreshRatio);
+  PetscCheck(reuse_.maxAge >= 0, assembler.comm(), PETSC_ERR_USER_INPUT,
+             "-boom_jacobian_max_age must be >= 0, got %" PetscInt_FMT, reuse_.maxAge);
+  if (reuse_.enabled) PetscCall(SNESSetConvergenceTest(snes_, convergenceTest, this, nullptr));
   PetscCall(SNESSetFromOptions(snes_));
   PetscFunctionReturn(0);
+}
+
+bool NewtonSolver::sameIterationMatrix(const AssemblyContext &a, const AssemblyContext &b) const
+{
+  // The iteration matrix depends on the step size through the coefficients
+  // of the affine map and the row scaling; a different kind of solve
+  // (acceleration level, statics) has a different matrix altogether.
+  auto same = [](double u, double v) { return std::abs(u - v) <= 1e-12 * std::max(std::abs(u), std::abs(v)); };
+  return same(a.kin.cQ, b.kin.cQ) && same(a.kin.cV, b.kin.cV) && same(a.kin.cA, b.kin.cA) &&
+         same(a.kin.cZ, b.kin.cZ) && same(a.sigma, b.sigma) && a.accelerationLevel == b.accelerationLevel &&
+         a.constraintBlocks == b.constraintBlocks;
 }
 
 PetscErrorCode NewtonSolver::solve(Vec x, PetscInt *iterations, SNESConvergedReason *reason)
@@ -57,10 +90,58 @@ PetscErrorCode NewtonSolver::solve(Vec x, PetscInt *iterations, SNESConvergedRea
     PetscCall(KSPReset(ksp));
     PetscCall(SNESSetJacobian(snes_, J_, J_, formJacobian, this));
     patternVersion_ = assembler_->patternVersion();
+    jacobianValid_ = false;
   }
+  ++stats_.solves;
+  if (!reuse_.enabled) {
+    PetscCall(solveOnce(x, iterations, reason));
+    PetscFunctionReturn(0);
+  }
+  const bool fresh = !jacobianValid_ || !sameIterationMatrix(ctx, jacobianCtx_) ||
+                     (reuse_.maxAge > 0 && jacobianAge_ >= reuse_.maxAge);
+  if (!fresh) PetscCall(VecCopy(x, x0_));
+  // lag -2: build the Jacobian at the first iterate, then keep it (-1).
+  PetscCall(SNESSetLagJacobian(snes_, fresh ? -2 : -1));
+  jacobianFresh_ = false;
+  PetscCall(solveOnce(x, iterations, reason));
+  if (*reason <= 0 && !jacobianFresh_) {
+    // Failed with a matrix from an earlier solve: redo from the same guess with a current one.
+    PetscInt more;
+    ++stats_.retriesWithFreshJacobian;
+    PetscCall(PetscInfo(snes_, "solve with a reused Jacobian failed (%s); retrying with a fresh one\n",
+                        SNESConvergedReasons[*reason]));
+    PetscCall(VecCopy(x0_, x));
+    PetscCall(SNESSetLagJacobian(snes_, -2));
+    PetscCall(solveOnce(x, &more, reason));
+    *iterations += more;
+  }
+  if (*reason <= 0) jacobianValid_ = false; // do not carry a matrix from a failed solve
+  ++jacobianAge_;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode NewtonSolver::solveOnce(Vec x, PetscInt *iterations, SNESConvergedReason *reason)
+{
+  PetscFunctionBeginUser;
+  previousFnorm_ = 0;
   PetscCall(SNESSolve(snes_, nullptr, x));
   PetscCall(SNESGetIterationNumber(snes_, iterations));
   PetscCall(SNESGetConvergedReason(snes_, reason));
+  stats_.iterations += *iterations;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode NewtonSolver::convergenceTest(SNES snes, PetscInt it, PetscReal xnorm, PetscReal snorm,
+                                             PetscReal fnorm, SNESConvergedReason *reason, void *self)
+{
+  auto *me = static_cast<NewtonSolver *>(self);
+  PetscFunctionBeginUser;
+  PetscCall(SNESConvergedDefault(snes, it, xnorm, snorm, fnorm, reason, nullptr));
+  // A reused matrix that contracts the residual too slowly is rebuilt at the
+  // current iterate (then the iteration is Newton's again).
+  if (*reason == SNES_CONVERGED_ITERATING && it > 0 && fnorm > me->reuse_.refreshRatio * me->previousFnorm_)
+    PetscCall(SNESSetLagJacobian(snes, -2));
+  me->previousFnorm_ = fnorm;
   PetscFunctionReturn(0);
 }
 
@@ -77,6 +158,10 @@ PetscErrorCode NewtonSolver::formJacobian(SNES, Vec x, Mat J, Mat, void *self)
   auto *me = static_cast<NewtonSolver *>(self);
   PetscFunctionBeginUser;
   PetscCall(me->assembler_->evaluate(me->ctx, x, nullptr, J));
+  ++me->stats_.jacobians;
+  me->jacobianValid_ = me->jacobianFresh_ = true;
+  me->jacobianCtx_ = me->ctx;
+  me->jacobianAge_ = 0;
   PetscFunctionReturn(0);
 }
 
