@@ -9,9 +9,6 @@ namespace {
 
 struct GaussRule {
   std::array<double, kGaussPoints> xi, w; // on [0, 1]
-  // First and second shape derivatives at the points for l = 1: for length l
-  // they scale by (1/l, 1, 1/l, 1) and (1/l^2, 1/l, 1/l^2, 1/l).
-  std::array<Eigen::Vector4d, kGaussPoints> ds1, ds2;
 };
 
 const GaussRule &gaussRule()
@@ -28,8 +25,6 @@ const GaussRule &gaussRule()
     for (int i = 0; i < 5; ++i) {
       r.xi[i] = 0.5 * (x[i] + 1.0);
       r.w[i] = 0.5 * w[i];
-      r.ds1[i] = shapeValues(r.xi[i], 1.0, 1);
-      r.ds2[i] = shapeValues(r.xi[i], 1.0, 2);
     }
     return r;
   }();
@@ -143,9 +138,7 @@ double strainEnergy(const Section &sec, double l, const Vec8 &e)
 void internalForce(const Section &sec, double l, const Vec8 &e, Vec8 &f, Mat8 *Kt)
 {
   const GaussRule &g = gaussRule();
-  // e as 2x4: column k is the node vector e.segment<2>(2k); likewise f.
-  const Eigen::Map<const Eigen::Matrix<double, 2, 4>> E(e.data());
-  Eigen::Matrix<double, 2, 4> F = Eigen::Matrix<double, 2, 4>::Zero();
+  Vec8 fl = Vec8::Zero(); // local accumulator: f may alias e
   // With a = EA eps - 2 EI K^2 / J2 and b = EI K / J2 (dK = (dc - 2 K dEps) / J2),
   //   f  = sum wx (a dEps + b dc),
   //   Kt = sum wx (EA dEps dEps^T + EI dK dK^T - 2b (dK dEps^T + dEps dK^T) + a d2eps + b d2c),
@@ -157,18 +150,21 @@ void internalForce(const Section &sec, double l, const Vec8 &e, Vec8 &f, Mat8 *K
     P.setZero(), Q.setZero();
     Kt->setZero();
   }
-  const double il = 1.0 / l;
   for (int p = 0; p < kGaussPoints; ++p) {
-    const Eigen::Vector4d s1 = g.ds1[p].cwiseProduct(Eigen::Vector4d(il, 1.0, il, 1.0));
-    const Eigen::Vector4d s2 = g.ds2[p].cwiseProduct(Eigen::Vector4d(il * il, il, il * il, il));
-    const Vec2 r1 = E * s1, r2 = E * s2;
+    const Eigen::Vector4d s1 = shapeValues(g.xi[p], l, 1), s2 = shapeValues(g.xi[p], l, 2);
+    Vec2 r1 = Vec2::Zero(), r2 = Vec2::Zero();
+    for (int k = 0; k < 4; ++k) {
+      r1 += s1[k] * e.segment<2>(2 * k);
+      r2 += s2[k] * e.segment<2>(2 * k);
+    }
     const double wx = g.w[p] * l; // dx weight
     const double J2 = r1.squaredNorm(), iJ2 = 1.0 / J2;
     const double eps = 0.5 * (J2 - 1.0);
     const double K = cross(r1, r2) * iJ2;
     const double a = sec.EA * eps - 2.0 * sec.EI * K * K * iJ2, b = sec.EI * K * iJ2;
     // dEps = s1 ⊗ r1, dc = s1 ⊗ W r2 - s2 ⊗ W r1.
-    F.noalias() += (wx * (a * r1 + b * rotCW(r2))) * s1.transpose() - (wx * b * rotCW(r1)) * s2.transpose();
+    const Vec2 v1 = wx * (a * r1 + b * rotCW(r2)), v2 = (wx * b) * rotCW(r1);
+    for (int k = 0; k < 4; ++k) fl.segment<2>(2 * k) += s1[k] * v1 - s2[k] * v2;
     if (!Kt) continue;
     const Vec8 dEps = expand(s1, r1);
     const Vec8 dK = (expand(s1, rotCW(r2)) - expand(s2, rotCW(r1)) - 2.0 * K * dEps) * iJ2;
@@ -180,7 +176,7 @@ void internalForce(const Section &sec, double l, const Vec8 &e, Vec8 &f, Mat8 *K
     P.noalias() += (wx * a) * s1 * s1.transpose();
     Q.noalias() += (wx * b) * (s1 * s2.transpose() - s2 * s1.transpose());
   }
-  Eigen::Map<Eigen::Matrix<double, 2, 4>>(f.data()) = F;
+  f = fl;
   if (!Kt) return;
   // Expand: (P ⊗ I) + (Q ⊗ W) with W = [[0, 1], [-1, 0]].
   for (int a = 0; a < 4; ++a)
