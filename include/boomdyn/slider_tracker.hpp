@@ -12,6 +12,14 @@
 
 namespace boomdyn {
 
+class Model;
+
+// For messages when a run fails: the sliding joints whose contact coordinate
+// (slacks, in the order of model.slidingJoints()) lies within margin times
+// the track length of an end of its track, e.g. "sliding joint 'j2' at
+// s = 1.99996 m, 4e-05 m from the end of its track 'boom1' (2 m)"; "" if none.
+std::string contactsNearTrackEnds(const Model &model, const std::vector<double> &slacks, double margin = 0.01);
+
 class SliderTracker {
 public:
   explicit SliderTracker(Assembler &assembler) : assembler_(assembler) {}

@@ -12,6 +12,7 @@
 #include "boomdyn/results_writer.hpp"
 #include "boomdyn/rope.hpp"
 #include "boomdyn/sensors.hpp"
+#include "boomdyn/slider_tracker.hpp"
 #include "boomdyn/static_solver.hpp"
 #include "boomdyn/stick_slip.hpp"
 #include "boomdyn/time_stepper.hpp"
@@ -272,6 +273,11 @@ PetscErrorCode runScene(const Scene &scene, const AppOptions &opts, int argc, ch
       PetscCall(writeCheckpoint(stepper));
     } else if (!summary.completed) {
       status = "failed: " + summary.failure;
+      // Newton failing with a contact point at a track end: the booms barely
+      // overlap (two pads nearly at one point) or a slider is leaving its track.
+      const std::string ends = contactsNearTrackEnds(model, slacks);
+      if (summary.failure.rfind("Newton failed", 0) == 0 && !ends.empty())
+        status += "; contact points at their track ends (booms without overlap, or a slider leaving its track): " + ends;
       PetscCall(out.appendState(integrator.time(), integrator.positions(), integrator.velocities(), integrator.multipliers()));
     }
     if (!opts.quiet)

@@ -1,5 +1,8 @@
 #include "boomdyn/slider_tracker.hpp"
 
+#include "boomdyn/model.hpp"
+
+#include <cmath>
 #include <sstream>
 
 namespace boomdyn {
@@ -70,6 +73,21 @@ PetscErrorCode SliderTracker::setLocations(const std::vector<double> &s)
   for (std::size_t k = 0; k < joints.size(); ++k) joints[k]->setTrackLocation(s[k]);
   if (!joints.empty()) PetscCall(assembler_.rebuildPattern());
   PetscFunctionReturn(0);
+}
+
+std::string contactsNearTrackEnds(const Model &model, const std::vector<double> &slacks, double margin)
+{
+  std::ostringstream os;
+  const auto &joints = model.slidingJoints();
+  for (std::size_t k = 0; k < joints.size() && k < slacks.size(); ++k) {
+    const double length = joints[k]->track().length(), s = slacks[k];
+    const double gap = std::min(std::abs(s), std::abs(length - s));
+    if (gap > margin * length) continue;
+    os << (os.tellp() > 0 ? "; " : "") << "sliding joint '" << joints[k]->name() << "' at s = " << s << " m, " << gap
+       << " m from the " << (std::abs(s) < std::abs(length - s) ? "start" : "end") << " of its track '"
+       << joints[k]->track().name() << "' (" << length << " m)";
+  }
+  return os.str();
 }
 
 } // namespace boomdyn
