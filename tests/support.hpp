@@ -60,6 +60,8 @@ struct DynamicHistory {
   std::vector<std::vector<double>> slacks;      // slack coordinate of every sliding joint, per step
   RunSummary summary;
   std::vector<double> finalState; // q and v of the last step, gathered on every rank
+  NewtonStatistics newton;        // of the time steps' solver
+  int patternVersion = 0;         // pattern rebuilds (sliding joints changing elements)
 };
 
 // All entries of a distributed vector on every rank.
@@ -121,6 +123,8 @@ inline DynamicHistory runDynamic(const Scene &scene, MPI_Comm comm = PETSC_COMM_
     const std::vector<double> all = gatherAll(v);
     h.finalState.insert(h.finalState.end(), all.begin(), all.begin() + model.numCoordinates());
   }
+  h.newton = integrator.newton().statistics();
+  h.patternVersion = assembler.patternVersion();
   VecDestroy(&x);
   VecDestroy(&zero);
   return h;

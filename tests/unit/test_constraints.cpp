@@ -182,3 +182,52 @@ TEST(RopeConstraint, DerivativesMatchFiniteDifferencesOnBeamsAndRigidBodies)
   rope.coordinates(dofs);
   EXPECT_EQ(dofs.size(), 19u);
 }
+
+// A contact point keeps its track element until it is more than
+// relocationHysteresis element lengths past the element's ends, and the
+// constraint it evaluates there (the element's cubic continued) agrees with
+// the neighbouring element's to second order in that distance.
+TEST(SlidingJointRelocation, HysteresisBandAtNodesAndContinuity)
+{
+  AncfBeam track("track", 2.0, 4, kSection, Vec2(0, 0), 0.2, 0); // elements of 0.5 m
+  AncfBeam slider("slider", 1.0, 2, kSection, Vec2(0.3, 0.1), 0.2, 20);
+  std::vector<double> q0(20 + slider.numCoordinates() + 1);
+  track.initialCoordinates(q0.data());
+  slider.initialCoordinates(q0.data() + 20);
+  // A smooth bend of the track, so that neighbouring cubics differ beyond C1 only slightly.
+  for (int node = 0; node <= 4; ++node) {
+    const double s = 0.5 * node;
+    q0[4 * node + 1] += 0.01 * s * s, q0[4 * node + 3] += 0.02 * s;
+  }
+  const PetscInt slack = static_cast<PetscInt>(q0.size()) - 1;
+  SlidingJoint joint("slide", track, slider, 0.4, slack, 1.0); // on the node between elements 1 and 2
+  const double band = SlidingJoint::relocationHysteresis * 0.5;
+  ASSERT_EQ(joint.trackLocation().element, 2);
+  EXPECT_FALSE(joint.relocate(1.0 - 1e-9));
+  EXPECT_FALSE(joint.relocate(1.0 - 0.8 * band));
+  EXPECT_EQ(joint.trackLocation().element, 2);
+
+  auto constraintAt = [&](double s) {
+    std::vector<PetscInt> dofs;
+    joint.coordinates(dofs);
+    std::vector<double> q(dofs.size());
+    for (std::size_t i = 0; i < dofs.size(); ++i) q[i] = q0[dofs[i]];
+    q.back() = s;
+    ConstraintEval ev;
+    joint.evaluate(0.0, q.data(), nullptr, nullptr, ev);
+    return Eigen::VectorXd(ev.C);
+  };
+  const double s = 1.0 - 0.8 * band;
+  const Eigen::VectorXd continued = constraintAt(s); // element 2, continued past its start
+  EXPECT_TRUE(joint.relocate(1.0 - 1.2 * band));
+  EXPECT_EQ(joint.trackLocation().element, 1);
+  const Eigen::VectorXd inside = constraintAt(s);     // element 1, inside
+  EXPECT_LT((continued - inside).norm(), 1e-8) << continued.transpose() << " vs " << inside.transpose();
+  // And back: within the band past element 1's end it stays, beyond it moves.
+  EXPECT_FALSE(joint.relocate(1.0 + 0.8 * band));
+  EXPECT_TRUE(joint.relocate(1.0 + 1.2 * band));
+  EXPECT_EQ(joint.trackLocation().element, 2);
+  // setTrackLocation (restarts) puts the point where the material coordinate says.
+  joint.setTrackLocation(0.2);
+  EXPECT_EQ(joint.trackLocation().element, 0);
+}
