@@ -56,6 +56,24 @@ public:
   // Initial coordinates (undeformed bodies as placed in the scene), size nq.
   std::vector<double> initialCoordinates() const;
 
+  // Conditioning of the Newton iteration matrix M/(beta h^2) + K of a dynamic
+  // run, estimated per ANCF beam from its element data: (omega_max h)^2 beta,
+  // with omega_max^2 the largest eigenvalue of one straight element's
+  // stiffness against its mass (it grows like EI / (rhoA l^4) with the
+  // element length l). Above kIllConditioned double precision no longer
+  // resolves the Newton residual (measured: docs/extreme-cases.md). One
+  // message per beam beyond it, naming the scene, the body, the element
+  // length, and the largest element count at this h and the largest h at
+  // this mesh that stay below it; empty for static and modal scenes.
+  static constexpr double kIllConditioned = 1e15;
+  struct Conditioning {
+    std::string body;
+    double elementLength = 0, omegaMax = 0, estimate = 0, maxStep = 0;
+    int elements = 0, maxElements = 0;
+  };
+  std::vector<Conditioning> iterationConditioning() const;
+  std::vector<std::string> conditioningWarnings() const;
+
 private:
   void addConstraint(std::shared_ptr<Constraint> c, const SourceMark &mark);
   void checkInitialConfiguration() const;

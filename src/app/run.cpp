@@ -120,6 +120,9 @@ PetscErrorCode runScene(const Scene &scene, const AppOptions &opts, int argc, ch
                           " multipliers, %d rank(s) -> %s\n",
                           BOOMDYN_VERSION, scene.name.c_str(), scene.file.c_str(), model.numCoordinates(),
                           model.numMultipliers(), size, opts.outputPath.c_str()));
+  // Meshes too fine for the step in double precision (reported even in quiet runs).
+  const std::vector<std::string> conditioning = model.conditioningWarnings();
+  for (const std::string &w : conditioning) PetscCall(PetscPrintf(PETSC_COMM_WORLD, "warning: %s\n", w.c_str()));
   Progress progress(scene.dynamic.t_end, opts.progressInterval, opts.quiet);
   PetscCall(progress.start());
   std::string status = "completed";
@@ -278,6 +281,7 @@ PetscErrorCode runScene(const Scene &scene, const AppOptions &opts, int argc, ch
       const std::string ends = contactsNearTrackEnds(model, slacks);
       if (summary.failure.rfind("Newton failed", 0) == 0 && !ends.empty())
         status += "; contact points at their track ends (booms without overlap, or a slider leaving its track): " + ends;
+      if (!conditioning.empty()) status += "; likely cause: " + conditioning.front();
       PetscCall(out.appendState(integrator.time(), integrator.positions(), integrator.velocities(), integrator.multipliers()));
     }
     if (!opts.quiet)

@@ -12,6 +12,8 @@
 #include "boomdyn/spring.hpp"
 #include "boomdyn/point_load.hpp"
 
+#include <Eigen/Eigenvalues>
+
 #include <cmath>
 #include <sstream>
 
@@ -27,6 +29,18 @@ std::string where(const SourceMark &m)
 }
 
 Vec2 toVec(const Vec2d &v) { return Vec2(v[0], v[1]); }
+
+// Largest omega^2 of one straight, unstrained element: K v = omega^2 M v.
+double elementOmegaMax2(const ancf::Section &sec, double l)
+{
+  const ancf::Vec8 e = ancf::straightElement(Vec2::Zero(), Vec2(1, 0), l);
+  ancf::Vec8 f;
+  ancf::Mat8 K;
+  ancf::internalForce(sec, l, e, f, &K);
+  const Eigen::GeneralizedSelfAdjointEigenSolver<ancf::Mat8> eig(0.5 * (K + K.transpose()), ancf::massMatrix(sec.rhoA, l),
+                                                                  Eigen::EigenvaluesOnly);
+  return eig.eigenvalues().maxCoeff();
+}
 
 } // namespace
 
@@ -190,6 +204,56 @@ std::vector<double> Model::initialCoordinates() const
   for (const auto &b : bodies_) b->initialCoordinates(q.data() + b->firstCoordinate());
   for (const auto &[index, s0] : slackInitial_) q[index] = s0;
   return q;
+}
+
+std::vector<Model::Conditioning> Model::iterationConditioning() const
+{
+  std::vector<Conditioning> out;
+  if (scene_.analysis != Scene::Analysis::Dynamic) return out;
+  // Generalized-alpha's beta for rho_inf (Chung & Hulbert), and the factor
+  // (1 - alpha_f) / (1 - alpha_m) between K and the mass term's coefficient.
+  const double rho = scene_.dynamic.rho_inf, am = (2 * rho - 1) / (rho + 1), af = rho / (rho + 1);
+  const double beta = 0.25 * (1 - am + af) * (1 - am + af), c = beta * (1 - af) / (1 - am), h = scene_.dynamic.dt;
+  for (const auto &b : bodies_) {
+    const auto *beam = dynamic_cast<const AncfBeam *>(b.get());
+    if (!beam) continue;
+    Conditioning k;
+    k.body = beam->name();
+    k.elements = beam->numElements();
+    k.elementLength = beam->elementLength();
+    k.omegaMax = std::sqrt(elementOmegaMax2(beam->section(), k.elementLength));
+    k.estimate = k.omegaMax * k.omegaMax * h * h * c;
+    k.maxStep = std::sqrt(kIllConditioned / (k.omegaMax * k.omegaMax * c));
+    // The estimate grows with the element count (like n^4 in bending): bisect.
+    auto estimate = [&](int n) { return elementOmegaMax2(beam->section(), beam->length() / n) * h * h * c; };
+    int lo = 1, hi = k.elements;
+    if (estimate(hi) <= kIllConditioned) lo = hi;
+    while (hi - lo > 1) {
+      const int mid = lo + (hi - lo) / 2;
+      (estimate(mid) <= kIllConditioned ? lo : hi) = mid;
+    }
+    k.maxElements = estimate(lo) <= kIllConditioned ? lo : 0;
+    out.push_back(k);
+  }
+  return out;
+}
+
+std::vector<std::string> Model::conditioningWarnings() const
+{
+  std::vector<std::string> out;
+  for (const Conditioning &k : iterationConditioning()) {
+    if (k.estimate <= kIllConditioned) continue;
+    std::ostringstream os;
+    os.precision(3);
+    os << scene_.file << ": body '" << k.body << "': " << k.elements << " elements of " << k.elementLength
+       << " m with h = " << scene_.dynamic.dt << " s make the Newton iteration matrix M/(beta h^2) + K ill-conditioned "
+       << "in double precision ((omega_max h)^2 beta = " << k.estimate << " > " << kIllConditioned
+       << ", omega_max = " << k.omegaMax << " rad/s from EI, rhoA and the element length): Newton stagnates, steps are "
+       << "rejected down to dt_min or accepted inaccurately. Use at most " << k.maxElements
+       << " elements on this body at this h, or h <= " << k.maxStep << " s";
+    out.push_back(os.str());
+  }
+  return out;
 }
 
 void Model::checkInitialConfiguration() const
