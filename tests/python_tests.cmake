@@ -46,6 +46,7 @@ boomdyn_script_test(postprocess.stick_slip_scene postprocess/test_stick_slip_sce
 boomdyn_script_test(postprocess.snapshots postprocess/test_snapshots.py postprocess)
 boomdyn_script_test(postprocess.paper_comparison_figures postprocess/test_paper_comparison.py postprocess)
 boomdyn_script_test(postprocess.xdmf postprocess/test_xdmf.py postprocess)
+boomdyn_script_test(postprocess.study postprocess/test_study.py postprocess)
 boomdyn_script_test(regression.restart regression/test_restart.py "regression;mpi")
 set_tests_properties(regression.restart PROPERTIES PROCESSORS 2
   ENVIRONMENT "OMPI_ALLOW_RUN_AS_ROOT=1;OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1")
