@@ -111,8 +111,15 @@ PetscErrorCode solveModes(Assembler &assembler, double t, Vec q, Vec lambda, int
     PetscCall(EPSGetEigenpair(eps, i, &w, nullptr, xr, nullptr));
     PetscCall(EPSComputeError(eps, i, EPS_ERROR_RELATIVE, &err));
     // An eigenpair that did not converge (rigid-body modes of a mechanism:
-    // a singular stiffness) must not be reported as a frequency.
-    if (!(err < 1e-6))
+    // a singular stiffness) must not be reported as a frequency. The relative
+    // residual |A x - w B x| / |w x| of a low mode of a stiff, fine mesh sits
+    // at a round-off floor of order eps |A| / w (2.7e-6 was seen for a 12 Hz
+    // mode at 32 elements per boom), so a clearly positive eigenvalue whose
+    // backward error is at round-off level is accepted as well.
+    PetscReal backward;
+    PetscCall(EPSComputeError(eps, i, EPS_ERROR_BACKWARD, &backward));
+    const bool converged = err < 1e-6 || (backward < 1e-10 && w > 1e-2);
+    if (!converged)
     {
       char values[96];
       std::snprintf(values, sizeof values, "%.3g rad^2/s^2) did not converge (relative residual %.3g", (double)w, (double)err);

@@ -1,6 +1,7 @@
 #include "boomdyn/newton_solver.hpp"
 
 #include "boomdyn/direct_solver.hpp"
+#include "boomdyn/schur_complement_solver.hpp"
 
 #include <cmath>
 
@@ -55,6 +56,11 @@ PetscErrorCode NewtonSolver::setUp(Assembler &assembler, const char *prefix, Pet
                              &reuse_.refreshRatio, nullptr));
   PetscCall(PetscOptionsInt("-boom_jacobian_max_age", "Rebuild the Jacobian after this many solves (0: never)", "",
                             reuse_.maxAge, &reuse_.maxAge, nullptr));
+  PetscBool schur = PETSC_FALSE;
+  PetscCall(PetscOptionsBool("-boom_schur_dd",
+                             "Direct solves by condensation onto the rank interfaces (KLU per rank) instead of MUMPS", "",
+                             schur, &schur, nullptr));
+  if (schur) PetscCall(useSchurComplementSolver(ksp));
   PetscOptionsEnd();
   PetscCheck(reuse_.refreshRatio > 0 && reuse_.refreshRatio < 1, assembler.comm(), PETSC_ERR_USER_INPUT,
              "-boom_jacobian_refresh_ratio must lie in (0, 1), got %g", (double)reuse_.refreshRatio);

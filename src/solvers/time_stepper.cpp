@@ -23,7 +23,12 @@ PetscErrorCode integrate(GeneralizedAlpha &integrator, const DynamicSpec &spec,
   // Stop within a hair of t_end rather than take a sliver of a step.
   const double tolerance = 1e-9 * spec.dt;
   while (integrator.time() < spec.t_end - tolerance) {
-    const double attempt = std::min(h, spec.t_end - integrator.time());
+    // A step that would leave less than a millionth of itself to go is
+    // stretched to end on t_end: the sum of many steps misses t_end by
+    // rounding, and a last step of 1e-12 s gave forces and multipliers of
+    // order m/h^2 (MN) and nonsense in the last output row.
+    const double remaining = spec.t_end - integrator.time();
+    const double attempt = remaining <= h * (1.0 + 1e-6) ? remaining : h;
     StepResult r;
     PetscCall(integrator.step(attempt, &r));
     if (!r.event.empty()) { // no step size helps: stop and say why

@@ -1,0 +1,265 @@
+#include "boomdyn/schur_complement_solver.hpp"
+
+#include "boomdyn/log_events.hpp"
+
+#include <Eigen/Dense>
+
+#include <algorithm>
+#include <unordered_map>
+#include <vector>
+
+namespace boomdyn {
+
+namespace {
+
+struct SchurContext {
+  MPI_Comm comm = MPI_COMM_NULL;
+  PetscInt rowStart = 0, nLocal = 0;
+  std::vector<PetscInt> interior, interface; // local row indices
+  std::vector<PetscInt> interfaceCounts, interfaceOffsets; // per rank, in the global interface numbering
+  PetscInt nInterface = 0;                  // all ranks
+  Mat AII = nullptr, AGI = nullptr;         // local blocks of the diagonal part
+  KSP interiorSolver = nullptr;             // KLU on A_II
+  Vec bI = nullptr, yI = nullptr;
+  Eigen::MatrixXd W;                        // A_II^{-1} A_{I G_p}
+  Eigen::PartialPivLU<Eigen::MatrixXd> S;   // factored Schur complement (all ranks)
+
+  PetscErrorCode destroy()
+  {
+    PetscFunctionBeginUser;
+    PetscCall(MatDestroy(&AII));
+    PetscCall(MatDestroy(&AGI));
+    PetscCall(KSPDestroy(&interiorSolver));
+    PetscCall(VecDestroy(&bI));
+    PetscCall(VecDestroy(&yI));
+    PetscFunctionReturn(0);
+  }
+};
+
+PetscErrorCode schurSetUp(PC pc)
+{
+  SchurContext *ctx;
+  Mat A, Ad, Ao;
+  const PetscInt *colmap;
+  PetscMPIInt size;
+  PetscFunctionBeginUser;
+  PetscCall(PCShellGetContext(pc, &ctx));
+  PetscCall(ctx->destroy());
+  PetscCall(PCGetOperators(pc, nullptr, &A));
+  ctx->comm = PetscObjectComm((PetscObject)pc);
+  PetscCallMPI(MPI_Comm_size(ctx->comm, &size));
+  PetscInt rowEnd;
+  PetscCall(MatGetOwnershipRange(A, &ctx->rowStart, &rowEnd));
+  ctx->nLocal = rowEnd - ctx->rowStart;
+  if (size > 1) {
+    PetscCall(MatMPIAIJGetSeqAIJ(A, &Ad, &Ao, &colmap));
+  } else {
+    Ad = A, Ao = nullptr, colmap = nullptr;
+  }
+
+  // Interface rows: those with entries in the off-process block. The
+  // Jacobian's pattern is structurally symmetric (each work item adds a full
+  // block), so these are also the rows other ranks' rows couple to.
+  // Rows with a zero diagonal (multipliers, massless slack coordinates at
+  // acceleration level) join the interface too: left in the interior they
+  // could make its block singular (a slack row whose multipliers are
+  // interface rows has nothing else), and they are few.
+  Vec diagonal;
+  const PetscScalar *d;
+  PetscCall(MatCreateVecs(A, &diagonal, nullptr));
+  PetscCall(MatGetDiagonal(A, diagonal));
+  PetscCall(VecGetArrayRead(diagonal, &d));
+  ctx->interior.clear();
+  ctx->interface.clear();
+  for (PetscInt i = 0; i < ctx->nLocal; ++i) {
+    PetscInt ncols = 0, offProcess = 0;
+    if (Ao) {
+      PetscCall(MatGetRow(Ao, i, &ncols, nullptr, nullptr));
+      offProcess = ncols; // MatRestoreRow zeroes ncols
+      PetscCall(MatRestoreRow(Ao, i, &ncols, nullptr, nullptr));
+    }
+    (offProcess > 0 || d[i] == 0.0 ? ctx->interface : ctx->interior).push_back(i);
+  }
+  PetscCall(VecRestoreArrayRead(diagonal, &d));
+  PetscCall(VecDestroy(&diagonal));
+  const PetscMPIInt nG = static_cast<PetscMPIInt>(ctx->interface.size());
+  std::vector<PetscMPIInt> counts(size), offsets(size + 1, 0);
+  PetscCallMPI(MPI_Allgather(&nG, 1, MPI_INT, counts.data(), 1, MPI_INT, ctx->comm));
+  for (int r = 0; r < size; ++r) offsets[r + 1] = offsets[r] + counts[r];
+  ctx->interfaceCounts.assign(counts.begin(), counts.end());
+  ctx->interfaceOffsets.assign(offsets.begin(), offsets.end());
+  ctx->nInterface = offsets[size];
+  const PetscMPIInt rank = [&] {
+    PetscMPIInt r;
+    MPI_Comm_rank(ctx->comm, &r);
+    return r;
+  }();
+  // Global row index of every interface unknown, to number the columns of S.
+  std::vector<PetscInt> mine(nG), all(ctx->nInterface);
+  for (PetscMPIInt k = 0; k < nG; ++k) mine[k] = ctx->rowStart + ctx->interface[k];
+  PetscCallMPI(MPI_Allgatherv(mine.data(), nG, MPIU_INT, all.data(), counts.data(), offsets.data(), MPIU_INT, ctx->comm));
+  std::unordered_map<PetscInt, PetscInt> interfaceIndex;
+  for (PetscInt k = 0; k < ctx->nInterface; ++k) interfaceIndex[all[k]] = k;
+
+  // Interior block, factored with KLU, and the blocks that couple it to this rank's interface.
+  const PetscInt nI = static_cast<PetscInt>(ctx->interior.size());
+  IS isI, isG;
+  PetscCall(ISCreateGeneral(PETSC_COMM_SELF, nI, ctx->interior.data(), PETSC_USE_POINTER, &isI));
+  PetscCall(ISCreateGeneral(PETSC_COMM_SELF, nG, ctx->interface.data(), PETSC_USE_POINTER, &isG));
+  PetscCall(MatCreateSubMatrix(Ad, isI, isI, MAT_INITIAL_MATRIX, &ctx->AII));
+  PetscCall(MatCreateSubMatrix(Ad, isG, isI, MAT_INITIAL_MATRIX, &ctx->AGI));
+  Mat AIG, AGG;
+  PetscCall(MatCreateSubMatrix(Ad, isI, isG, MAT_INITIAL_MATRIX, &AIG));
+  PetscCall(MatCreateSubMatrix(Ad, isG, isG, MAT_INITIAL_MATRIX, &AGG));
+  PetscCall(ISDestroy(&isI));
+  PetscCall(ISDestroy(&isG));
+  PC ipc;
+  PetscCall(KSPCreate(PETSC_COMM_SELF, &ctx->interiorSolver));
+  PetscCall(KSPSetType(ctx->interiorSolver, KSPPREONLY));
+  PetscCall(KSPGetPC(ctx->interiorSolver, &ipc));
+  PetscCall(PCSetType(ipc, PCLU));
+  PetscCall(PCFactorSetMatSolverType(ipc, MATSOLVERKLU));
+  PetscCall(KSPSetOperators(ctx->interiorSolver, ctx->AII, ctx->AII));
+  PetscCall(KSPSetErrorIfNotConverged(ctx->interiorSolver, PETSC_TRUE));
+  PetscCall(MatCreateVecs(ctx->AII, &ctx->bI, &ctx->yI));
+  if (nI > 0) PetscCall(KSPSetUp(ctx->interiorSolver));
+
+  // W = A_II^{-1} A_IG, one interior solve per interface unknown of this rank.
+  ctx->W.resize(nI, nG);
+  for (PetscMPIInt k = 0; k < nG && nI > 0; ++k) {
+    PetscCall(VecSet(ctx->bI, 0.0));
+    PetscCall(MatGetColumnVector(AIG, ctx->bI, k));
+    PetscCall(KSPSolve(ctx->interiorSolver, ctx->bI, ctx->yI));
+    const PetscScalar *y;
+    PetscCall(VecGetArrayRead(ctx->yI, &y));
+    std::copy(y, y + nI, ctx->W.col(k).data());
+    PetscCall(VecRestoreArrayRead(ctx->yI, &y));
+  }
+
+  // This rank's rows of S: A_{G_p G} - A_{G_p I_p} W (columns G_p only for the second term).
+  Eigen::MatrixXd rows = Eigen::MatrixXd::Zero(nG, ctx->nInterface);
+  for (PetscMPIInt k = 0; k < nG; ++k) {
+    PetscInt ncols;
+    const PetscInt *cols;
+    const PetscScalar *vals;
+    PetscCall(MatGetRow(AGG, k, &ncols, &cols, &vals));
+    for (PetscInt c = 0; c < ncols; ++c) rows(k, offsets[rank] + cols[c]) += vals[c];
+    PetscCall(MatRestoreRow(AGG, k, &ncols, &cols, &vals));
+    if (Ao) {
+      PetscCall(MatGetRow(Ao, ctx->interface[k], &ncols, &cols, &vals));
+      for (PetscInt c = 0; c < ncols; ++c) {
+        const auto it = interfaceIndex.find(colmap[cols[c]]);
+        PetscCheck(it != interfaceIndex.end(), ctx->comm, PETSC_ERR_PLIB,
+                   "off-process column %" PetscInt_FMT " is not an interface unknown (pattern not symmetric)",
+                   colmap[cols[c]]);
+        rows(k, it->second) += vals[c];
+      }
+      PetscCall(MatRestoreRow(Ao, ctx->interface[k], &ncols, &cols, &vals));
+    }
+    PetscCall(MatGetRow(ctx->AGI, k, &ncols, &cols, &vals));
+    for (PetscInt c = 0; c < ncols; ++c)
+      for (PetscMPIInt j = 0; j < nG; ++j) rows(k, offsets[rank] + j) -= vals[c] * ctx->W(cols[c], j);
+    PetscCall(MatRestoreRow(ctx->AGI, k, &ncols, &cols, &vals));
+  }
+  PetscCall(MatDestroy(&AIG));
+  PetscCall(MatDestroy(&AGG));
+  // Gather all rows (row-major blocks) and factor S on every rank.
+  Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> rowMajor = rows, S(ctx->nInterface, ctx->nInterface);
+  std::vector<PetscMPIInt> valCounts(size), valOffsets(size);
+  for (int r = 0; r < size; ++r)
+    valCounts[r] = counts[r] * static_cast<PetscMPIInt>(ctx->nInterface), valOffsets[r] = offsets[r] * static_cast<PetscMPIInt>(ctx->nInterface);
+  PetscCallMPI(MPI_Allgatherv(rowMajor.data(), nG * static_cast<PetscMPIInt>(ctx->nInterface), MPIU_SCALAR, S.data(),
+                              valCounts.data(), valOffsets.data(), MPIU_SCALAR, ctx->comm));
+  if (ctx->nInterface > 0) {
+    ctx->S.compute(S);
+    // Rows mix forces, scaled constraints and stiff couplings, so a condition
+    // estimate says little; a zero or non-finite pivot does.
+    const Eigen::VectorXd pivots = ctx->S.matrixLU().diagonal().cwiseAbs();
+    PetscCheck(pivots.allFinite() && pivots.minCoeff() > 0, ctx->comm, PETSC_ERR_MAT_LU_ZRPVT,
+               "interface Schur complement is singular (smallest pivot %g): the system has no unique solution",
+               pivots.size() ? pivots.minCoeff() : 0.0);
+  }
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode schurApply(PC pc, Vec b, Vec x)
+{
+  SchurContext *ctx;
+  const PetscScalar *barr;
+  PetscScalar *xarr, *tmp;
+  PetscFunctionBeginUser;
+  PetscCall(PCShellGetContext(pc, &ctx));
+  const PetscInt nI = static_cast<PetscInt>(ctx->interior.size()), nG = static_cast<PetscInt>(ctx->interface.size());
+  PetscCall(VecGetArrayRead(b, &barr));
+  // y = A_II^{-1} b_I
+  if (nI > 0) {
+    PetscCall(VecGetArrayWrite(ctx->bI, &tmp));
+    for (PetscInt i = 0; i < nI; ++i) tmp[i] = barr[ctx->interior[i]];
+    PetscCall(VecRestoreArrayWrite(ctx->bI, &tmp));
+    PetscCall(KSPSolve(ctx->interiorSolver, ctx->bI, ctx->yI));
+  }
+  // g_p = b_{G_p} - A_{G_p I_p} y, gathered; x_G = S^{-1} g on every rank.
+  Eigen::VectorXd g(nG), all(ctx->nInterface);
+  const PetscScalar *y = nullptr;
+  if (nI > 0) PetscCall(VecGetArrayRead(ctx->yI, &y));
+  for (PetscInt k = 0; k < nG; ++k) {
+    PetscInt ncols;
+    const PetscInt *cols;
+    const PetscScalar *vals;
+    double s = barr[ctx->interface[k]];
+    PetscCall(MatGetRow(ctx->AGI, k, &ncols, &cols, &vals));
+    for (PetscInt c = 0; c < ncols; ++c) s -= vals[c] * y[cols[c]];
+    PetscCall(MatRestoreRow(ctx->AGI, k, &ncols, &cols, &vals));
+    g[k] = s;
+  }
+  PetscCall(VecRestoreArrayRead(b, &barr));
+  std::vector<PetscMPIInt> counts(ctx->interfaceCounts.begin(), ctx->interfaceCounts.end()),
+    offsets(ctx->interfaceOffsets.begin(), ctx->interfaceOffsets.end() - 1);
+  PetscCallMPI(MPI_Allgatherv(g.data(), static_cast<PetscMPIInt>(nG), MPIU_SCALAR, all.data(), counts.data(), offsets.data(),
+                              MPIU_SCALAR, ctx->comm));
+  Eigen::VectorXd xG;
+  if (ctx->nInterface > 0) xG = ctx->S.solve(all);
+  PetscMPIInt rank;
+  PetscCallMPI(MPI_Comm_rank(ctx->comm, &rank));
+  const Eigen::Map<const Eigen::VectorXd> xMine(xG.data() + (ctx->nInterface > 0 ? ctx->interfaceOffsets[rank] : 0), nG);
+  // x_I = y - W x_{G_p}
+  PetscCall(VecGetArrayWrite(x, &xarr));
+  if (nI > 0) {
+    Eigen::VectorXd xI = Eigen::Map<const Eigen::VectorXd>(y, nI);
+    if (nG > 0) xI.noalias() -= ctx->W * xMine;
+    for (PetscInt i = 0; i < nI; ++i) xarr[ctx->interior[i]] = xI[i];
+    PetscCall(VecRestoreArrayRead(ctx->yI, &y));
+  }
+  for (PetscInt k = 0; k < nG; ++k) xarr[ctx->interface[k]] = xMine[k];
+  PetscCall(VecRestoreArrayWrite(x, &xarr));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode schurDestroy(PC pc)
+{
+  SchurContext *ctx;
+  PetscFunctionBeginUser;
+  PetscCall(PCShellGetContext(pc, &ctx));
+  PetscCall(ctx->destroy());
+  delete ctx;
+  PetscFunctionReturn(0);
+}
+
+} // namespace
+
+PetscErrorCode useSchurComplementSolver(KSP ksp)
+{
+  PC pc;
+  PetscFunctionBeginUser;
+  PetscCall(KSPSetType(ksp, KSPPREONLY));
+  PetscCall(KSPGetPC(ksp, &pc));
+  PetscCall(PCSetType(pc, PCSHELL));
+  PetscCall(PCShellSetContext(pc, new SchurContext));
+  PetscCall(PCShellSetName(pc, "boomdyn interface Schur complement (KLU on rank interiors)"));
+  PetscCall(PCShellSetSetUp(pc, schurSetUp));
+  PetscCall(PCShellSetApply(pc, schurApply));
+  PetscCall(PCShellSetDestroy(pc, schurDestroy));
+  PetscFunctionReturn(0);
+}
+
+} // namespace boomdyn
