@@ -108,3 +108,21 @@ output:
   MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
   if (rank == 0) EXPECT_LT(lowest, -0.9) << "the pendulum must actually swing down";
 }
+
+// Steps that do not divide t_end exactly: the run ends on t_end, and no step
+// is a rounding sliver (a 1e-12 s last step gave MN multipliers before).
+TEST(TimeStepping, EndsOnTEndWithoutSliverSteps)
+{
+  // 7 s as in the paper scenes: thousands of steps accumulate the rounding.
+  for (double h : {5e-4, 1e-3 / 3.0, 7e-4, 4e-3}) {
+    Scene scene = cantilever(h, 0.8);
+    scene.dynamic.dt = h; // exactly, not through std::to_string
+    scene.dynamic.t_end = 7.0;
+    const DynamicHistory run = runDynamic(scene, PETSC_COMM_SELF);
+    ASSERT_TRUE(run.summary.completed) << run.summary.failure;
+    EXPECT_NEAR(run.time.back(), scene.dynamic.t_end, 1e-12) << "h = " << h;
+    for (std::size_t k = 1; k < run.time.size(); ++k)
+      EXPECT_GT(run.time[k] - run.time[k - 1], 1e-3 * h) << "step " << k << " of h = " << h;
+    EXPECT_EQ(run.summary.steps, static_cast<PetscInt>(std::ceil(scene.dynamic.t_end / h - 1e-6))) << "h = " << h;
+  }
+}
