@@ -144,8 +144,11 @@ PetscErrorCode NewtonSolver::convergenceTest(SNES snes, PetscInt it, PetscReal x
   PetscFunctionBeginUser;
   PetscCall(SNESConvergedDefault(snes, it, xnorm, snorm, fnorm, reason, nullptr));
   // A reused matrix that contracts the residual too slowly is rebuilt at the
-  // current iterate (then the iteration is Newton's again).
-  if (*reason == SNES_CONVERGED_ITERATING && it > 0 && fnorm > me->reuse_.refreshRatio * me->previousFnorm_)
+  // current iterate (then the iteration is Newton's again) -- unless the
+  // update is already at round-off size: on fine meshes the residual stalls
+  // at its round-off floor, and no Jacobian helps there.
+  if (*reason == SNES_CONVERGED_ITERATING && it > 0 && fnorm > me->reuse_.refreshRatio * me->previousFnorm_ &&
+      snorm > 1e-8 * xnorm)
     PetscCall(SNESSetLagJacobian(snes, -2));
   me->previousFnorm_ = fnorm;
   PetscFunctionReturn(0);

@@ -19,6 +19,8 @@ struct SchurContext {
   std::vector<PetscInt> interfaceCounts, interfaceOffsets; // per rank, in the global interface numbering
   PetscInt nInterface = 0;                  // all ranks
   Mat AII = nullptr, AGI = nullptr;         // local blocks of the diagonal part
+  Mat AIG = nullptr, AGG = nullptr;
+  PetscInt64 matrixId = -1;                  // the operator these blocks were cut from
   KSP interiorSolver = nullptr;             // KLU on A_II
   Vec bI = nullptr, yI = nullptr;
   Eigen::MatrixXd W;                        // A_II^{-1} A_{I G_p}
@@ -29,6 +31,9 @@ struct SchurContext {
     PetscFunctionBeginUser;
     PetscCall(MatDestroy(&AII));
     PetscCall(MatDestroy(&AGI));
+    PetscCall(MatDestroy(&AIG));
+    PetscCall(MatDestroy(&AGG));
+    matrixId = -1;
     PetscCall(KSPDestroy(&interiorSolver));
     PetscCall(VecDestroy(&bI));
     PetscCall(VecDestroy(&yI));
@@ -44,7 +49,6 @@ PetscErrorCode schurSetUp(PC pc)
   PetscMPIInt size;
   PetscFunctionBeginUser;
   PetscCall(PCShellGetContext(pc, &ctx));
-  PetscCall(ctx->destroy());
   PetscCall(PCGetOperators(pc, nullptr, &A));
   ctx->comm = PetscObjectComm((PetscObject)pc);
   PetscCallMPI(MPI_Comm_size(ctx->comm, &size));
@@ -69,6 +73,7 @@ PetscErrorCode schurSetUp(PC pc)
   PetscCall(MatCreateVecs(A, &diagonal, nullptr));
   PetscCall(MatGetDiagonal(A, diagonal));
   PetscCall(VecGetArrayRead(diagonal, &d));
+  const std::vector<PetscInt> oldInterior = std::move(ctx->interior), oldInterface = std::move(ctx->interface);
   ctx->interior.clear();
   ctx->interface.clear();
   for (PetscInt i = 0; i < ctx->nLocal; ++i) {
@@ -101,27 +106,37 @@ PetscErrorCode schurSetUp(PC pc)
   std::unordered_map<PetscInt, PetscInt> interfaceIndex;
   for (PetscInt k = 0; k < ctx->nInterface; ++k) interfaceIndex[all[k]] = k;
 
-  // Interior block, factored with KLU, and the blocks that couple it to this rank's interface.
+  // Interior block, factored with KLU, and the blocks that couple it to this
+  // rank's interface. The same operator with the same split (a Jacobian
+  // refreshed in place) keeps the blocks and the symbolic factorization.
+  PetscInt64 id;
+  PetscCall(PetscObjectGetId((PetscObject)A, &id));
+  const bool sameSplit = id == ctx->matrixId && ctx->interior == oldInterior && ctx->interface == oldInterface;
+  if (!sameSplit) PetscCall(ctx->destroy());
+  const MatReuse reuse = sameSplit ? MAT_REUSE_MATRIX : MAT_INITIAL_MATRIX;
   const PetscInt nI = static_cast<PetscInt>(ctx->interior.size());
   IS isI, isG;
   PetscCall(ISCreateGeneral(PETSC_COMM_SELF, nI, ctx->interior.data(), PETSC_USE_POINTER, &isI));
   PetscCall(ISCreateGeneral(PETSC_COMM_SELF, nG, ctx->interface.data(), PETSC_USE_POINTER, &isG));
-  PetscCall(MatCreateSubMatrix(Ad, isI, isI, MAT_INITIAL_MATRIX, &ctx->AII));
-  PetscCall(MatCreateSubMatrix(Ad, isG, isI, MAT_INITIAL_MATRIX, &ctx->AGI));
-  Mat AIG, AGG;
-  PetscCall(MatCreateSubMatrix(Ad, isI, isG, MAT_INITIAL_MATRIX, &AIG));
-  PetscCall(MatCreateSubMatrix(Ad, isG, isG, MAT_INITIAL_MATRIX, &AGG));
+  PetscCall(MatCreateSubMatrix(Ad, isI, isI, reuse, &ctx->AII));
+  PetscCall(MatCreateSubMatrix(Ad, isG, isI, reuse, &ctx->AGI));
+  PetscCall(MatCreateSubMatrix(Ad, isI, isG, reuse, &ctx->AIG));
+  PetscCall(MatCreateSubMatrix(Ad, isG, isG, reuse, &ctx->AGG));
   PetscCall(ISDestroy(&isI));
   PetscCall(ISDestroy(&isG));
-  PC ipc;
-  PetscCall(KSPCreate(PETSC_COMM_SELF, &ctx->interiorSolver));
-  PetscCall(KSPSetType(ctx->interiorSolver, KSPPREONLY));
-  PetscCall(KSPGetPC(ctx->interiorSolver, &ipc));
-  PetscCall(PCSetType(ipc, PCLU));
-  PetscCall(PCFactorSetMatSolverType(ipc, MATSOLVERKLU));
+  Mat AIG = ctx->AIG, AGG = ctx->AGG;
+  if (!sameSplit) {
+    PC ipc;
+    PetscCall(KSPCreate(PETSC_COMM_SELF, &ctx->interiorSolver));
+    PetscCall(KSPSetType(ctx->interiorSolver, KSPPREONLY));
+    PetscCall(KSPGetPC(ctx->interiorSolver, &ipc));
+    PetscCall(PCSetType(ipc, PCLU));
+    PetscCall(PCFactorSetMatSolverType(ipc, MATSOLVERKLU));
+    PetscCall(KSPSetErrorIfNotConverged(ctx->interiorSolver, PETSC_TRUE));
+    PetscCall(MatCreateVecs(ctx->AII, &ctx->bI, &ctx->yI));
+    ctx->matrixId = id;
+  }
   PetscCall(KSPSetOperators(ctx->interiorSolver, ctx->AII, ctx->AII));
-  PetscCall(KSPSetErrorIfNotConverged(ctx->interiorSolver, PETSC_TRUE));
-  PetscCall(MatCreateVecs(ctx->AII, &ctx->bI, &ctx->yI));
   if (nI > 0) PetscCall(KSPSetUp(ctx->interiorSolver));
 
   // W = A_II^{-1} A_IG, one interior solve per interface unknown of this rank.
@@ -161,8 +176,6 @@ PetscErrorCode schurSetUp(PC pc)
       for (PetscMPIInt j = 0; j < nG; ++j) rows(k, offsets[rank] + j) -= vals[c] * ctx->W(cols[c], j);
     PetscCall(MatRestoreRow(ctx->AGI, k, &ncols, &cols, &vals));
   }
-  PetscCall(MatDestroy(&AIG));
-  PetscCall(MatDestroy(&AGG));
   // Gather all rows (row-major blocks) and factor S on every rank.
   Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> rowMajor = rows, S(ctx->nInterface, ctx->nInterface);
   std::vector<PetscMPIInt> valCounts(size), valOffsets(size);

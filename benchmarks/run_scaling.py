@@ -1,0 +1,97 @@
+#!/usr/bin/env python3
+"""Whole-run scaling benchmark (issue 6): runs a dynamic scene with a range of
+elements per boom (-boom_elements), on one or more ranks and with any extra
+boomdyn options, and reports time per step and per element and step, Newton
+iterations and Jacobians per step, and where the time goes (-log_view):
+residual evaluations, Jacobian evaluations, factorizations (PCSetUp),
+triangular solves (PCApply) and the rest of the step.
+
+  /usr/bin/python3 benchmarks/run_scaling.py [--scene benchmarks/scenes/long_boom.yaml] \\
+      [--elements 10 100 1000 10000 100000] [--ranks 1] [--steps 100] [--label NAME] [--out FILE.md] \\
+      [-- boomdyn options, e.g. -boom_jacobian_reuse -boom_schur_dd]
+
+Only the time steps are counted (the -log_view event BoomStep): model set-up,
+the initial acceleration solve and the final output are not part of the
+per-step cost.
+"""
+import argparse
+import os
+import re
+import subprocess
+import sys
+import tempfile
+
+import h5py
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+EVENTS = {"BoomStep": "step", "SNESFunctionEval": "residual", "SNESJacobianEval": "jacobian", "PCSetUp": "factor",
+          "PCApply": "solve"}
+
+
+def log_events(path):
+    with open(path) as f:
+        text = f.read()
+    out = {}
+    for event, key in EVENTS.items():
+        m = re.search(r"^%s\s+(\d+)\s+\S+\s+(\S+)" % event, text, re.M)
+        out[key] = (int(m.group(1)), float(m.group(2))) if m else (0, 0.0)
+    m = re.search(r"^Time \(sec\):\s+(\S+)", text, re.M)
+    out["total"] = float(m.group(1)) if m else float("nan")
+    return out
+
+
+def run(scene, n, ranks, steps, extra, tmp):
+    out = os.path.join(tmp, "run%d.h5" % n)
+    log = os.path.join(tmp, "log%d.txt" % n)
+    with open(scene) as f:
+        dt = float(re.search(r"^\s*dt:\s*(\S+)", f.read(), re.M).group(1))
+    cmd = [os.path.join(ROOT, "build", "boomdyn"), scene, "-o", out, "-boom_overwrite", "-boom_quiet",
+           "-boom_elements", str(n), "-ts_max_time", repr(steps * dt), "-log_view", ":" + log] + extra
+    if ranks > 1:
+        cmd = ["mpiexec", "-n", str(ranks), "--oversubscribe", "--allow-run-as-root"] + cmd
+    subprocess.run(cmd, check=True)
+    with h5py.File(out) as f:
+        its = f["steps/newton_iterations"][1:]
+        tip = f["sensors"][list(f["sensors"])[0]]["position"][-1]
+    return len(its), its.mean(), log_events(log), tip
+
+
+def main():
+    argv = sys.argv[1:]
+    extra = []
+    if "--" in argv:
+        i = argv.index("--")
+        argv, extra = argv[:i], argv[i + 1:]
+    p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    p.add_argument("--scene", default=os.path.join(ROOT, "benchmarks", "scenes", "long_boom.yaml"))
+    p.add_argument("--elements", type=int, nargs="+", default=[10, 100, 1000, 10000, 100000])
+    p.add_argument("--ranks", type=int, default=1)
+    p.add_argument("--steps", type=int, default=100)
+    p.add_argument("--label", default="")
+    p.add_argument("--out", help="append the markdown table to this file")
+    a = p.parse_args(argv)
+    head = ("| elements | ranks | options | steps | per step [ms] | per element and step [µs] | Newton it/step | "
+            "Jacobians/step | residuals [%] | Jacobians [%] | factor [%] | solve [%] | rest [%] | tip y [m] |")
+    rows = [head, "|" + "---:|" * 3 + "---:|" * 11]
+    rows[1] = "|---:|---:|---|" + "---:|" * 11
+    label = a.label or (" ".join(extra) if extra else "default")
+    with tempfile.TemporaryDirectory() as tmp:
+        for n in a.elements:
+            steps, its, ev, tip = run(a.scene, n, a.ranks, a.steps, extra, tmp)
+            step = ev["step"][1]
+            share = {k: 100 * ev[k][1] / step for k in ("residual", "jacobian", "factor", "solve")}
+            rest = 100 - sum(share.values())
+            rows.append("| %d | %d | %s | %d | %.3f | %.3f | %.2f | %.2f | %.0f | %.0f | %.0f | %.0f | %.0f | %.6e |" % (
+                n, a.ranks, label, steps, 1e3 * step / steps, 1e6 * step / steps / n, its,
+                ev["jacobian"][0] / max(steps, 1), share["residual"], share["jacobian"], share["factor"],
+                share["solve"], rest, tip[1]))
+            print(rows[-1], flush=True)
+    table = "\n".join(rows)
+    print(table)
+    if a.out:
+        with open(a.out, "a") as f:
+            f.write("\n" + table + "\n")
+
+
+if __name__ == "__main__":
+    sys.exit(main())
