@@ -55,6 +55,8 @@ inline StaticOutcome runStatic(const Scene &scene, MPI_Comm comm = PETSC_COMM_WO
 
 struct DynamicHistory {
   std::vector<double> time, violation, energy; // energy: kinetic + strain + potential
+  std::vector<double> inputPower;              // of time-varying loads and drives, per step
+  std::vector<EnergyParts> energyParts;
   std::vector<std::vector<SensorReading>> sensors;
   std::vector<std::vector<double>> multipliers; // unscaled, every row, per step (all ranks)
   std::vector<std::vector<double>> slacks;      // slack coordinate of every sliding joint, per step
@@ -108,6 +110,8 @@ inline DynamicHistory runDynamic(const Scene &scene, MPI_Comm comm = PETSC_COMM_
     h.time.push_back(t);
     h.violation.push_back(viol);
     h.energy.push_back(e.kinetic + e.strain + e.potential);
+    h.inputPower.push_back(e.inputPower);
+    h.energyParts.push_back(e);
     h.sensors.push_back(r);
     const std::vector<double> lam = gatherAll(integrator.multipliers()), q = gatherAll(integrator.positions());
     h.multipliers.emplace_back(lam.begin() + model.numCoordinates(), lam.end());

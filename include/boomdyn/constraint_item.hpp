@@ -16,6 +16,9 @@ public:
   void coordinates(std::vector<PetscInt> &dofs) const override { constraint_->coordinates(dofs); }
   void multiplierRows(std::vector<PetscInt> &rows) const override;
   void evaluate(const AssemblyContext &ctx, const ItemValues &in, double *residual, double *J) const override;
+  // Power of the constraint forces, lambda . dC/dt (non-zero for drives only);
+  // in.lambda holds the unscaled multipliers here.
+  void energy(const AssemblyContext &ctx, const ItemValues &in, EnergyParts &e) const override;
   double constraintViolation(const AssemblyContext &ctx, const ItemValues &in) const override;
   const Constraint &constraint() const { return *constraint_; }
   PetscInt firstRow() const { return firstRow_; }

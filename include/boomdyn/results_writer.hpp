@@ -51,6 +51,12 @@ public:
   const std::string &path() const { return path_; }
   // Steps at which a rope would have had to push (tension < 0), for /summary.
   void setSlackRopeSteps(PetscInt n) { slackRopeSteps_ = n; }
+  // Energy balance of a dynamic run (/summary attributes input_work_J,
+  // energy_excess_J, energy_involved_J).
+  void setEnergyBalance(double inputWork, double excess, double involved)
+  {
+    energyBalance_[0] = inputWork, energyBalance_[1] = excess, energyBalance_[2] = involved, hasEnergyBalance_ = true;
+  }
 
 private:
   PetscErrorCode gather(Vec v, std::vector<double> &out);
@@ -70,6 +76,8 @@ private:
   VecScatter toZero_ = nullptr;
   Vec gathered_ = nullptr;
   PetscInt slackRopeSteps_ = 0;
+  double energyBalance_[3] = {0, 0, 0};
+  bool hasEnergyBalance_ = false;
   std::vector<double> snapshotTimes_;
   std::size_t sampledPoints_ = 0, sampledSegments_ = 0;
   long long eventCount_ = 0;

@@ -25,6 +25,9 @@ struct StepInfo {
   PetscInt iterations = 0;   // Newton iterations of this step
   PetscInt rejected = 0;     // rejected attempts so far (whole run)
   const StepperState *stepper = nullptr; // the controller after this step (for checkpoints)
+  // Set by the step callback to end the run as failed, with this reason
+  // (a check on the accepted step failed, e.g. the energy balance).
+  mutable std::string failure;
 };
 
 struct RunSummary {

@@ -51,6 +51,9 @@ struct ItemValues {
 
 struct EnergyParts {
   double kinetic = 0, strain = 0, potential = 0;
+  // Rate at which the explicit time dependence of loads and driven
+  // constraints feeds energy in (W): dE/dt = inputPower - dissipation.
+  double inputPower = 0;
 };
 
 class WorkItem {

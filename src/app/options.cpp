@@ -42,6 +42,8 @@ PetscErrorCode readAppOptions(int argc, char **argv, AppOptions *opts)
   PetscCall(PetscOptionsGetBool(nullptr, "boom_", "-quiet", &flag, nullptr));
   opts->quiet = flag;
   PetscCall(PetscOptionsGetReal(nullptr, "boom_", "-progress_interval", &opts->progressInterval, nullptr));
+  PetscCall(PetscOptionsGetReal(nullptr, "boom_", "-energy_tolerance", &opts->energyTolerance, nullptr));
+  require(opts->energyTolerance >= 0, "-boom_energy_tolerance must be >= 0");
   PetscCall(PetscOptionsGetReal(nullptr, "boom_", "-checkpoint_interval", &opts->checkpointInterval, nullptr));
   require(opts->checkpointInterval >= 0, "-boom_checkpoint_interval must be >= 0");
   PetscCall(PetscOptionsGetString(nullptr, "boom_", "-checkpoint", buf, sizeof buf, &set));

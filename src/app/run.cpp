@@ -3,6 +3,7 @@
 #include "progress.hpp"
 #include "signals.hpp"
 
+#include "boomdyn/energy_balance.hpp"
 #include "boomdyn/assembler.hpp"
 #include "boomdyn/checkpoint.hpp"
 #include "boomdyn/eigen_solver.hpp"
@@ -147,6 +148,9 @@ PetscErrorCode runScene(const Scene &scene, const AppOptions &opts, int argc, ch
     EnergyParts energy;
     PetscReal violation;
     PetscCall(integrator.diagnostics(&energy, &violation));
+    // Restarted runs check the balance from the restart on.
+    EnergyBalance balance(opts.energyTolerance);
+    (void)balance.update(integrator.time(), 0.0, energy);
     if (!restart) { // a restarted file starts with the restored state snapshot only
       PetscCall(sensors.read(integrator.positions(), integrator.velocities(), readings));
       PetscCall(out.appendStep(0.0, 0.0, 0, violation, energy, readings));
@@ -245,6 +249,7 @@ PetscErrorCode runScene(const Scene &scene, const AppOptions &opts, int argc, ch
       PetscFunctionBeginUser;
       PetscCall(integrator.diagnostics(&energy, &violation));
       maxViolation = std::max(maxViolation, (double)violation);
+      s.failure = balance.update(s.t, s.h, energy);
       PetscCall(sensors.read(integrator.positions(), integrator.velocities(), readings));
       PetscCall(out.appendStep(s.t, s.h, s.iterations, violation, energy, readings));
       PetscCall(sensors.readJoints(integrator.positions(), integrator.multipliers(), slacks, multipliers));
@@ -269,6 +274,7 @@ PetscErrorCode runScene(const Scene &scene, const AppOptions &opts, int argc, ch
                         [] { return interruptRequested(PETSC_COMM_WORLD); }));
     steps = summary.steps;
     rejected = summary.rejected;
+    out.setEnergyBalance(balance.inputWork(), balance.excess(), balance.involved());
     if (summary.interrupted) {
       status = "interrupted";
       interruptedAt = integrator.time();

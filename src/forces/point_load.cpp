@@ -39,6 +39,8 @@ void PointForce::energy(const AssemblyContext &ctx, const ItemValues &in, Energy
   CenterlineSample p;
   body_->sample(loc_, s_, in.q, p);
   e.potential -= (ctx.loadFactor * scale_.value(ctx.t) * force_).dot(p.r[0]);
+  // U = -s(t) F . r changes at fixed r when the load does: dU/dt = -s'(t) F . r.
+  e.inputPower -= (ctx.loadFactor * scale_.rate(ctx.t) * force_).dot(p.r[0]);
 }
 
 PointMass::PointMass(std::string name, const Body &body, double s, double mass, Vec2 gravity)

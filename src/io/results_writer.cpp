@@ -403,6 +403,11 @@ PetscErrorCode ResultsWriter::finish(const std::string &status, PetscInt steps, 
     file_->setAttribute("/summary", "wall_time_s", wallTime);
     file_->setAttribute("/summary", "max_constraint_violation", maxViolation);
     file_->setAttribute("/summary", "slack_rope_steps", static_cast<long long>(slackRopeSteps_));
+    if (hasEnergyBalance_) {
+      file_->setAttribute("/summary", "input_work_J", energyBalance_[0]);
+      file_->setAttribute("/summary", "energy_excess_J", energyBalance_[1]);
+      file_->setAttribute("/summary", "energy_involved_J", energyBalance_[2]);
+    }
     if (!model_.frictionJointNames().empty())
       file_->setAttribute("/summary", "stick_slip_events", static_cast<long long>(eventCount_));
     file_->close();

@@ -37,6 +37,20 @@ void ConstraintItem::evaluate(const AssemblyContext &ctx, const ItemValues &in, 
   Jm.bottomLeftCorner(m, nc) += sigma * (ctx.accelerationLevel ? ctx.kin.cA : ctx.kin.cQ) * ev.Cq;
 }
 
+void ConstraintItem::energy(const AssemblyContext &ctx, const ItemValues &in, EnergyParts &e) const
+{
+  // The constraint forces -C_q^T lambda do work -lambda . C_q v = lambda . C_t
+  // (C_q v + C_t = 0 along the motion): zero unless C depends on time
+  // explicitly, as a drive's does. C_t by a central difference in t, which
+  // is exact (zero) for constraints without time dependence.
+  const double dt = 1e-6 * std::max(1.0, std::abs(ctx.t));
+  ConstraintEval plus, minus;
+  constraint_->evaluate(ctx.t + dt, in.q, nullptr, nullptr, plus);
+  constraint_->evaluate(ctx.t - dt, in.q, nullptr, nullptr, minus);
+  const Eigen::Map<const Eigen::VectorXd> lam(in.lambda, constraint_->numRows());
+  e.inputPower += lam.dot(plus.C - minus.C) / (2.0 * dt);
+}
+
 double ConstraintItem::constraintViolation(const AssemblyContext &ctx, const ItemValues &in) const
 {
   ConstraintEval ev;

@@ -215,9 +215,13 @@ PetscErrorCode GeneralizedAlpha::diagnostics(EnergyParts *energy, PetscReal *vio
   AssemblyContext ctx;
   ctx.t = t_;
   ctx.kin = {1.0, 0.0, 0.0};
-  // q from q_ itself (cQ = 1, qc = 0), v from v_ (cV = 0, vc = v_).
+  // q from q_ itself (cQ = 1, qc = 0), v from v_ (cV = 0, vc = v_), and the
+  // unscaled multipliers for the power of driven constraints (qp_ is free
+  // between steps).
+  PetscCall(VecCopy(q_, qp_));
+  PetscCall(assembler_.copyMultipliers(lambda_, qp_, 1.0));
   PetscCall(assembler_.setOffsets(nullptr, v_, nullptr));
-  PetscCall(assembler_.diagnostics(ctx, q_, energy, violation));
+  PetscCall(assembler_.diagnostics(ctx, qp_, energy, violation));
   PetscFunctionReturn(0);
 }
 

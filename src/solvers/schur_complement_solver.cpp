@@ -106,6 +106,8 @@ PetscErrorCode schurSetUp(PC pc)
   std::unordered_map<PetscInt, PetscInt> interfaceIndex;
   for (PetscInt k = 0; k < ctx->nInterface; ++k) interfaceIndex[all[k]] = k;
 
+  PetscCall(PetscInfo(pc, "interface Schur complement: %" PetscInt_FMT " unknowns in all, %d on this rank, %zu interior\n",
+                      ctx->nInterface, (int)nG, ctx->interior.size()));
   // Interior block, factored with KLU, and the blocks that couple it to this
   // rank's interface. The same operator with the same split (a Jacobian
   // refreshed in place) keeps the blocks and the symbolic factorization.

@@ -69,6 +69,11 @@ PetscErrorCode integrate(GeneralizedAlpha &integrator, const DynamicSpec &spec,
     st.steps = info.step, st.rejected = summary->rejected, st.newtonIterations = summary->newtonIterations;
     info.stepper = &st;
     if (onStep) PetscCall(onStep(info));
+    if (!info.failure.empty()) {
+      summary->failure = info.failure;
+      summary->steps = info.step;
+      PetscFunctionReturn(0);
+    }
     if (stop && stop() && integrator.time() < spec.t_end - tolerance) {
       summary->interrupted = true;
       summary->steps = info.step;

@@ -1,0 +1,40 @@
+// Energy balance of a dynamic run: with E = kinetic + strain + potential
+// (gravity and dead loads) and P_in the power fed in by loads that vary in
+// time and by driven constraints, every part of the model either conserves
+// or dissipates, so
+//
+//     E(t) - E(0) <= W_in(t) = integral of P_in dt   (up to the scheme's error).
+//
+// Generalized-alpha dissipates (rho_inf < 1) or conserves (rho_inf = 1) for
+// linear problems, but can gain energy without bound on strongly nonlinear
+// ones (a whipping beam at rho_inf near 1, a too-large step on a flexible
+// pendulum): every step converges and the results are garbage. The check
+// ends such a run with a clear message instead. The excess E - E(0) - W_in
+// is compared with the energy the motion has involved: the largest kinetic
+// plus strain energy so far plus the work exchanged with loads and drives.
+#pragma once
+
+#include "boomdyn/work_item.hpp"
+
+#include <string>
+
+namespace boomdyn {
+
+class EnergyBalance {
+public:
+  // tolerance: largest excess as a fraction of the energy involved (0: no check).
+  explicit EnergyBalance(double tolerance) : tolerance_(tolerance) {}
+  // At every accepted step (and once at the start, h = 0). Returns a
+  // non-empty message when energy was created beyond the tolerance.
+  std::string update(double t, double h, const EnergyParts &e);
+  double inputWork() const { return work_; }      // W_in so far [J]
+  double excess() const { return excess_; }        // E - E(0) - W_in [J]
+  double involved() const { return activity_ + exchanged_; }
+
+private:
+  double tolerance_;
+  bool started_ = false;
+  double e0_ = 0, previousPower_ = 0, work_ = 0, exchanged_ = 0, activity_ = 0, excess_ = 0;
+};
+
+} // namespace boomdyn

@@ -1,0 +1,37 @@
+#include "boomdyn/energy_balance.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+namespace boomdyn {
+
+std::string EnergyBalance::update(double t, double h, const EnergyParts &e)
+{
+  const double total = e.kinetic + e.strain + e.potential;
+  activity_ = std::max(activity_, e.kinetic + std::abs(e.strain));
+  if (!started_) {
+    started_ = true;
+    e0_ = total;
+    previousPower_ = e.inputPower;
+    return {};
+  }
+  // Trapezoidal rule over the step: second order, like the integrator.
+  work_ += 0.5 * (previousPower_ + e.inputPower) * h;
+  exchanged_ += 0.5 * (std::abs(previousPower_) + std::abs(e.inputPower)) * h;
+  previousPower_ = e.inputPower;
+  excess_ = total - e0_ - work_;
+  // Round-off of the sums (the potential may carry a large constant).
+  const double floor = 1e-9 * (std::abs(total) + std::abs(e0_));
+  if (tolerance_ <= 0 || excess_ <= tolerance_ * involved() + floor) return {};
+  char text[512];
+  std::snprintf(text, sizeof text,
+                "energy balance violated at t = %g s: the total energy grew by %.4g J more than the work of loads and "
+                "drives (%.4g J), %.3g times the energy the motion involves (%.4g J; tolerance %g). The integration is "
+                "unstable here (generalized-alpha on a strongly nonlinear motion, or a step too large for it): use a "
+                "smaller rho_inf (<= 0.9) or a smaller dt (-boom_energy_tolerance 0 turns this check off)",
+                t, excess_, work_, excess_ / std::max(involved(), 1e-300), involved(), tolerance_);
+  return text;
+}
+
+} // namespace boomdyn
