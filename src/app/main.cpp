@@ -13,7 +13,9 @@
 
 #include <slepcsys.h>
 
+#include <chrono>
 #include <cstdio>
+#include <thread>
 #include <exception>
 #include <new>
 #include <string>
@@ -50,6 +52,50 @@ std::string aboutScene(const std::string &message, const std::string &scene)
   return scene.empty() || message.find(scene) != std::string::npos ? message : scene + ": " + message;
 }
 
+// Every rank ends here, with its error line (empty: success). An error that
+// only some ranks met leaves the others waiting in a collective call
+// forever: a failing rank that does not see the others arrive within
+// -boom_error_wait seconds prints its own message and aborts the job. When
+// all arrive, rank 0 prints its message, or the first failing rank prints
+// its own if rank 0 has none, and all exit with the largest code.
+PetscErrorCode reportTogether(const std::string &line, int *code)
+{
+  PetscMPIInt size, rank;
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_size(PETSC_COMM_WORLD, &size));
+  PetscCallMPI(MPI_Comm_rank(PETSC_COMM_WORLD, &rank));
+  if (size == 1) {
+    if (!line.empty()) PetscCall(PetscPrintf(PETSC_COMM_SELF, "%s\n", line.c_str()));
+    PetscFunctionReturn(0);
+  }
+  PetscReal wait = 30.0;
+  PetscCall(PetscOptionsGetReal(nullptr, "boom_", "-error_wait", &wait, nullptr));
+  MPI_Request request;
+  int arrived = 0;
+  PetscCallMPI(MPI_Ibarrier(PETSC_COMM_WORLD, &request));
+  const auto start = std::chrono::steady_clock::now();
+  while (true) {
+    PetscCallMPI(MPI_Test(&request, &arrived, MPI_STATUS_IGNORE));
+    if (arrived) break;
+    if (!line.empty() && std::chrono::steady_clock::now() - start > std::chrono::duration<double>(wait)) {
+      std::fprintf(stderr, "%s\nboomdyn: rank %d failed alone and the other ranks cannot finish without it; aborting\n",
+                   line.c_str(), rank);
+      std::fflush(stderr);
+      MPI_Abort(PETSC_COMM_WORLD, *code ? *code : 1);
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  }
+  int failed = line.empty() ? size : rank, firstFailed, worst;
+  PetscCallMPI(MPI_Allreduce(&failed, &firstFailed, 1, MPI_INT, MPI_MIN, PETSC_COMM_WORLD));
+  PetscCallMPI(MPI_Allreduce(code, &worst, 1, MPI_INT, MPI_MAX, PETSC_COMM_WORLD));
+  *code = worst;
+  if (rank == firstFailed) {
+    std::fprintf(rank == 0 ? stdout : stderr, "%s\n", line.c_str());
+    std::fflush(rank == 0 ? stdout : stderr);
+  }
+  PetscFunctionReturn(0);
+}
+
 } // namespace
 
 int main(int argc, char **argv)
@@ -57,7 +103,7 @@ int main(int argc, char **argv)
   PetscCall(PetscInitialize(&argc, &argv, nullptr, help));
   PetscCall(PetscPushErrorHandler(keepFirstError, nullptr));
   int code = 0;
-  std::string scenePath;
+  std::string scenePath, errorLine;
   try {
     boomdyn::AppOptions opts;
     PetscErrorCode ierr = boomdyn::readAppOptions(argc, argv, &opts);
@@ -78,22 +124,22 @@ int main(int argc, char **argv)
         message = "the system matrix is singular: a body or motion without support, or redundant or contradictory "
                   "constraints (two drives on one joint, a clamp plus an angle drive at one point, ...); solver said: " +
                   message;
-      PetscCall(PetscPrintf(PETSC_COMM_WORLD, "boomdyn: error: %s\n", aboutScene(message, scenePath).c_str()));
+      errorLine = "boomdyn: error: " + aboutScene(message, scenePath);
       code = 1;
     }
   } catch (const boomdyn::Interrupted &e) {
-    PetscCall(PetscPrintf(PETSC_COMM_WORLD, "boomdyn: %s\n", e.what()));
+    errorLine = std::string("boomdyn: ") + e.what();
     code = 128 + boomdyn::interruptSignal();
   } catch (const std::bad_alloc &) {
-    PetscCall(PetscPrintf(PETSC_COMM_WORLD, "boomdyn: error: %s\n",
-                          aboutScene("out of memory: the scene needs more memory than this machine has "
-                                     "(a mesh too large? see -boom_elements)", scenePath).c_str()));
+    errorLine = "boomdyn: error: " + aboutScene("out of memory: the scene needs more memory than this machine has "
+                                                "(a mesh too large? see -boom_elements)", scenePath);
     code = 1;
   } catch (const std::exception &e) {
     // Bad scenes and mechanisms: a clear message, a non-zero exit, no core dump.
-    PetscCall(PetscPrintf(PETSC_COMM_WORLD, "boomdyn: error: %s\n", aboutScene(e.what(), scenePath).c_str()));
+    errorLine = "boomdyn: error: " + aboutScene(e.what(), scenePath);
     code = 1;
   }
+  PetscCall(reportTogether(errorLine, &code));
   PetscCall(PetscPopErrorHandler()); // pushed above; unpopped it shows in -malloc_dump
   PetscBool slepc;
   PetscCall(SlepcInitialized(&slepc));

@@ -24,6 +24,7 @@
 #include <algorithm>
 #include <memory>
 #include <cmath>
+#include <cstdlib>
 #include <sstream>
 #include <stdexcept>
 
@@ -69,9 +70,10 @@ PetscErrorCode modalAnalysis(Assembler &assembler, ResultsWriter &out, double t,
 
 PetscErrorCode runScene(const Scene &scene, const AppOptions &opts, int argc, char **argv)
 {
-  PetscMPIInt size;
+  PetscMPIInt size, rank;
   PetscFunctionBeginUser;
   PetscCallMPI(MPI_Comm_size(PETSC_COMM_WORLD, &size));
+  PetscCallMPI(MPI_Comm_rank(PETSC_COMM_WORLD, &rank));
   Model model(scene);
   Assembler assembler(model);
   PetscCall(assembler.setUp(PETSC_COMM_WORLD));
@@ -132,6 +134,10 @@ PetscErrorCode runScene(const Scene &scene, const AppOptions &opts, int argc, ch
   double maxViolation = 0;
 
   if (scene.analysis == Scene::Analysis::Dynamic) {
+    // Test aid (tests/mpi_tests.cmake): an error on one rank only, as a
+    // rank-local solver or I/O failure would give; the run must not hang.
+    if (const char *failRank = std::getenv("BOOMDYN_TEST_FAIL_RANK"); failRank && std::atoi(failRank) == rank)
+      throw std::runtime_error("failure injected on rank " + std::to_string(rank) + " (BOOMDYN_TEST_FAIL_RANK)");
     GeneralizedAlpha integrator(assembler, scene.dynamic.rho_inf);
     PetscCall(integrator.setUp(scene.dynamic.max_newton));
     const bool restart = !opts.restartPath.empty();
