@@ -2,12 +2,19 @@
 
 #include <unsupported/Eigen/AutoDiff>
 
+#include <array>
 #include <cmath>
 
 namespace boomdyn {
 
 namespace {
-using AD = Eigen::AutoDiffScalar<Eigen::VectorXd>;
+// Derivatives with respect to the item's unknowns: at most two 8-coordinate
+// elements, s, z and the normal multiplier. A fixed capacity keeps them on
+// the stack (a heap-allocated VectorXd per intermediate made one friction
+// item cost as much as 25 beam elements).
+constexpr int kMaxUnknowns = 19;
+using Derivatives = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, kMaxUnknowns, 1>;
+using AD = Eigen::AutoDiffScalar<Derivatives>;
 
 AD absolute(const AD &x) { return x.value() < 0 ? AD(-x) : x; }
 } // namespace
@@ -44,7 +51,7 @@ void LuGreFriction::evaluate(const AssemblyContext &ctx, const ItemValues &in, d
     a.derivatives() *= coefficient;
     return a;
   };
-  auto constant = [&](double value) { return AD(value, Eigen::VectorXd::Zero(n)); };
+  auto constant = [&](double value) { return AD(value, Derivatives::Zero(n)); };
 
   const double sv = in.q[is];
   CenterlineSample ti, sj;
@@ -99,7 +106,8 @@ void LuGreFriction::evaluate(const AssemblyContext &ctx, const ItemValues &in, d
   const AD lambda = variable(ctx.sigma * in.lambda[0], il, ctx.sigma);
   const AD force = (f.sigma0 * z + f.sigma1 * zdot) * absolute(lambda) + f.sigma2 * vr;
 
-  std::vector<AD> r(n, constant(0.0));
+  std::array<AD, kMaxUnknowns> r;
+  for (int row = 0; row < n; ++row) r[row] = constant(0.0);
   // Force -F_t i on the track at s, +F_t i on the slider: residual = -Q.
   for (int m = 0; m < ni; ++m) r[m] = force * (trackJacobianEntry(0, m) * ix + trackJacobianEntry(1, m) * iy);
   for (int m = 0; m < nj; ++m) r[ni + m] = -force * (sliderJacobianEntry(0, m) * ix + sliderJacobianEntry(1, m) * iy);
