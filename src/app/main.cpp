@@ -111,7 +111,12 @@ int main(int argc, char **argv)
     if (!ierr) {
       boomdyn::Scene scene = boomdyn::readSceneFile(opts.scenePath);
       ierr = boomdyn::applySceneOverrides(&scene);
-      if (!ierr) {
+      PetscInt parts = 0;
+      PetscBool report = PETSC_FALSE;
+      if (!ierr) ierr = PetscOptionsGetInt(nullptr, "boom_", "-partition_report", &parts, &report);
+      if (!ierr && report) {
+        ierr = boomdyn::reportPartitions(scene, parts);
+      } else if (!ierr) {
         boomdyn::installInterruptHandlers();
         ierr = boomdyn::runScene(scene, opts, argc, argv);
       }

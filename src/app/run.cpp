@@ -4,6 +4,7 @@
 #include "signals.hpp"
 
 #include "boomdyn/energy_balance.hpp"
+#include "boomdyn/partition.hpp"
 #include "boomdyn/assembler.hpp"
 #include "boomdyn/checkpoint.hpp"
 #include "boomdyn/eigen_solver.hpp"
@@ -67,6 +68,27 @@ PetscErrorCode modalAnalysis(Assembler &assembler, ResultsWriter &out, double t,
 }
 
 } // namespace
+
+PetscErrorCode reportPartitions(const Scene &scene, PetscInt parts)
+{
+  PetscFunctionBeginUser;
+  PetscCheck(parts >= 1 && parts <= 4096, PETSC_COMM_WORLD, PETSC_ERR_USER_INPUT,
+             "-boom_partition_report: the number of parts must be between 1 and 4096, got %" PetscInt_FMT, parts);
+  Model model(scene);
+  const int p = static_cast<int>(parts);
+  PetscCall(PetscPrintf(PETSC_COMM_WORLD, "scene '%s': %zu work items, %" PetscInt_FMT " unknowns, %d parts\n",
+                        scene.name.c_str(), model.items().size(), model.size(), p));
+  PetscCall(PetscPrintf(PETSC_COMM_WORLD, "%-12s %10s %10s %10s  items per part\n", "partition", "interface", "cut edges",
+                        "imbalance"));
+  for (const PartitionQuality &q : {evaluatePartition(model, contiguousPartition(model, p), p, "contiguous"),
+                                    evaluatePartition(model, metisPartition(model, p), p, "METIS k-way")}) {
+    std::string counts;
+    for (int n : q.itemsPerPart) counts += " " + std::to_string(n);
+    PetscCall(PetscPrintf(PETSC_COMM_WORLD, "%-12s %10d %10d %10.3f %s\n", q.method.c_str(), q.interfaceUnknowns,
+                          q.cutEdges, q.imbalance, counts.c_str()));
+  }
+  PetscFunctionReturn(0);
+}
 
 PetscErrorCode runScene(const Scene &scene, const AppOptions &opts, int argc, char **argv)
 {

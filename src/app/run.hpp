@@ -18,6 +18,10 @@ public:
   using std::runtime_error::runtime_error;
 };
 
+// -boom_partition_report P: the contiguous split against a METIS partition
+// of the work-item graph into P parts (interface unknowns, balance); no run.
+PetscErrorCode reportPartitions(const Scene &scene, PetscInt parts);
+
 PetscErrorCode runScene(const Scene &scene, const AppOptions &opts, int argc, char **argv);
 
 } // namespace boomdyn
