@@ -64,6 +64,7 @@ private:
   int patternVersion_ = 0;
   Vec xTemplate_ = nullptr, xLocal_ = nullptr, fLocal_ = nullptr;
   VecScatter scatter_ = nullptr;
+  std::vector<int> itemRank_;               // rank of every model item (empty: owner of its first unknown)
   std::vector<const WorkItem *> items_;
   std::vector<int> itemStart_, itemCoords_; // offsets into itemLocal_; coordinate counts
   std::vector<PetscInt> itemLocal_;         // local indices of each item's dofs

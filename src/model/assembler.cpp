@@ -1,6 +1,7 @@
 #include "boomdyn/assembler.hpp"
 
 #include "boomdyn/log_events.hpp"
+#include "boomdyn/partition.hpp"
 
 #include <algorithm>
 #include <unordered_map>
@@ -25,6 +26,21 @@ PetscErrorCode Assembler::setUp(MPI_Comm comm)
   PetscCall(VecSetSizes(xTemplate_, PETSC_DECIDE, model_.size()));
   PetscCall(VecSetFromOptions(xTemplate_));
   PetscCall(VecSetUp(xTemplate_));
+  // Which rank evaluates which work item: by default the owner of the item's
+  // first unknown (the contiguous split of each boom); -boom_partition metis:
+  // a METIS k-way partition of the work-item graph, computed identically on
+  // every rank. Rows stay in contiguous blocks either way; entries an item
+  // computes for rows of another rank travel with MatSetValuesCOO and the
+  // reverse scatter.
+  PetscMPIInt size;
+  PetscCallMPI(MPI_Comm_size(comm, &size));
+  char method[32] = "contiguous";
+  PetscCall(PetscOptionsGetString(nullptr, "boom_", "-partition", method, sizeof method, nullptr));
+  const std::string m = method;
+  PetscCheck(m == "contiguous" || m == "metis", comm, PETSC_ERR_USER_INPUT,
+             "-boom_partition must be 'contiguous' or 'metis', got '%s'", method);
+  itemRank_.clear();
+  if (m == "metis" && size > 1) itemRank_ = metisPartition(model_, size);
   PetscCall(buildPattern());
   PetscFunctionReturn(0);
 }
@@ -46,9 +62,13 @@ PetscErrorCode Assembler::buildPattern()
   PetscInt lo, hi;
   PetscFunctionBeginUser;
   PetscCall(VecGetOwnershipRange(xTemplate_, &lo, &hi));
-  // Items whose first coordinate this rank owns. Contiguous coordinate
-  // numbering per body makes this a contiguous split of each boom's elements.
+  // Items whose first coordinate this rank owns (contiguous coordinate
+  // numbering per body makes this a contiguous split of each boom's
+  // elements), or the items the METIS partition gives this rank.
+  PetscMPIInt rank;
+  PetscCallMPI(MPI_Comm_rank(comm_, &rank));
   std::vector<PetscInt> coords, rows;
+  std::size_t index = 0;
   std::vector<std::vector<PetscInt>> dofLists;
   items_.clear();
   itemCoords_.clear();
@@ -58,7 +78,9 @@ PetscErrorCode Assembler::buildPattern()
   for (const auto &item : model_.items()) {
     item->coordinates(coords);
     PetscCheck(!coords.empty(), comm_, PETSC_ERR_PLIB, "work item %s touches no coordinate", item->name().c_str());
-    if (coords[0] < lo || coords[0] >= hi) continue;
+    const bool mine = itemRank_.empty() ? coords[0] >= lo && coords[0] < hi : itemRank_[index] == rank;
+    ++index;
+    if (!mine) continue;
     item->multiplierRows(rows);
     items_.push_back(item.get());
     itemCoords_.push_back(static_cast<int>(coords.size()));

@@ -82,20 +82,26 @@ TEST(EnergyBalance, CheckFlagsCreatedEnergyOnly)
   e.potential = 1e6; // a large constant offset (gravity) must not matter
   e.inputPower = 10.0;
   EXPECT_TRUE(balance.update(0.0, 0.0, e).empty());
-  // A drive puts in 10 W for 1 s; the system stores 9 J (1 J dissipated).
-  e.kinetic = 4.5, e.strain = 4.5;
-  EXPECT_TRUE(balance.update(1.0, 1.0, e).empty()) << balance.excess();
+  // The first step is the baseline: whatever it does (here: 1000 J from
+  // nowhere, an overshoot) is not checked.
+  e.kinetic = 1000.0;
+  EXPECT_TRUE(balance.update(0.5, 0.5, e).empty());
+  // A drive puts in 10 W for 1 s; the system stores 9 J more (1 J dissipated).
+  e.kinetic = 1004.5, e.strain = 4.5;
+  EXPECT_TRUE(balance.update(1.5, 1.0, e).empty()) << balance.excess();
   EXPECT_NEAR(balance.inputWork(), 10.0, 1e-12);
   EXPECT_NEAR(balance.excess(), -1.0, 1e-9);
-  // Energy from nowhere: 40 J more while the drive puts in 5 J.
+  // Energy from nowhere: 400 J more while the drive puts in 5 J (the
+  // energy involved is about 1000 J: 40 % of it).
   e.inputPower = 0.0;
-  e.kinetic = 44.5;
-  const std::string message = balance.update(2.0, 1.0, e);
-  EXPECT_NE(message.find("energy balance violated at t = 2 s"), std::string::npos) << message;
+  e.kinetic = 1404.5;
+  const std::string message = balance.update(2.5, 1.0, e);
+  EXPECT_NE(message.find("energy balance violated at t = 2.5 s"), std::string::npos) << message;
   EXPECT_NE(message.find("rho_inf"), std::string::npos) << message;
   // Off: never a message.
   EnergyBalance off(0.0);
   (void)off.update(0.0, 0.0, EnergyParts{});
+  (void)off.update(1.0, 1.0, EnergyParts{});
   e.kinetic = 1e9;
-  EXPECT_TRUE(off.update(1.0, 1.0, e).empty());
+  EXPECT_TRUE(off.update(2.0, 1.0, e).empty());
 }
