@@ -85,7 +85,7 @@ inline std::vector<double> gatherAll(Vec v)
   return out;
 }
 
-inline DynamicHistory runDynamic(const Scene &scene, MPI_Comm comm = PETSC_COMM_WORLD)
+inline DynamicHistory runDynamic(const Scene &scene, MPI_Comm comm = PETSC_COMM_WORLD, double errorTolerance = 0)
 {
   DynamicHistory h;
   Model model(scene);
@@ -97,6 +97,7 @@ inline DynamicHistory runDynamic(const Scene &scene, MPI_Comm comm = PETSC_COMM_
   check(assembler.initialState(x));
   GeneralizedAlpha integrator(assembler, scene.dynamic.rho_inf);
   check(integrator.setUp(scene.dynamic.max_newton));
+  integrator.setErrorTolerance(errorTolerance);
   check(integrator.initialize(0.0, x, zero));
   SensorProbe probe(model);
   check(probe.setUp(x));

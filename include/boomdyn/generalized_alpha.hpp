@@ -31,6 +31,10 @@ struct StepResult {
   PetscInt iterations = 0;
   SNESConvergedReason reason = SNES_CONVERGED_ITERATING;
   std::string event; // set when the step cannot be taken at any h (a slider left its track)
+  // Local error of the positions, max over coordinates [m or 1]: the
+  // Newmark estimate h^2 |beta - 1/6| |a_{n+1} - a_n| (Zienkiewicz and Xie).
+  double errorEstimate = 0;
+  bool errorRejected = false; // converged, but errorEstimate > the error tolerance
 };
 
 class GeneralizedAlpha {
@@ -64,6 +68,10 @@ public:
   // Context for diagnostics at the current state (energy, violation).
   PetscErrorCode diagnostics(EnergyParts *energy, PetscReal *violation);
   NewtonSolver &newton() { return newton_; }
+  // Adaptive steps (-boom_adaptive_tol): a converged step whose error
+  // estimate exceeds tol is not taken (result.errorRejected). 0: off.
+  void setErrorTolerance(double tol) { errorTolerance_ = tol; }
+  double errorTolerance() const { return errorTolerance_; }
   const AlphaParameters &parameters() const { return params_; }
 
 private:
@@ -76,7 +84,7 @@ private:
   AlphaParameters params_;
   NewtonSolver newton_;
   SliderTracker sliders_;
-  double t_ = 0, massScale_ = 1;
+  double t_ = 0, massScale_ = 1, errorTolerance_ = 0;
   Vec q_ = nullptr, v_ = nullptr, qdd_ = nullptr, a_ = nullptr, lambda_ = nullptr;
   Vec x_ = nullptr, qp_ = nullptr, vc_ = nullptr, ac_ = nullptr, zero_ = nullptr;
   IS lambdaIS_ = nullptr;

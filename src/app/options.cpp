@@ -44,6 +44,8 @@ PetscErrorCode readAppOptions(int argc, char **argv, AppOptions *opts)
   PetscCall(PetscOptionsGetReal(nullptr, "boom_", "-progress_interval", &opts->progressInterval, nullptr));
   PetscCall(PetscOptionsGetReal(nullptr, "boom_", "-energy_tolerance", &opts->energyTolerance, nullptr));
   require(opts->energyTolerance >= 0, "-boom_energy_tolerance must be >= 0");
+  PetscCall(PetscOptionsGetReal(nullptr, "boom_", "-adaptive_tol", &opts->adaptiveTolerance, nullptr));
+  require(opts->adaptiveTolerance >= 0, "-boom_adaptive_tol must be >= 0");
   PetscCall(PetscOptionsGetReal(nullptr, "boom_", "-checkpoint_interval", &opts->checkpointInterval, nullptr));
   require(opts->checkpointInterval >= 0, "-boom_checkpoint_interval must be >= 0");
   PetscCall(PetscOptionsGetString(nullptr, "boom_", "-checkpoint", buf, sizeof buf, &set));

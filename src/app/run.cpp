@@ -162,6 +162,7 @@ PetscErrorCode runScene(const Scene &scene, const AppOptions &opts, int argc, ch
       throw std::runtime_error("failure injected on rank " + std::to_string(rank) + " (BOOMDYN_TEST_FAIL_RANK)");
     GeneralizedAlpha integrator(assembler, scene.dynamic.rho_inf);
     PetscCall(integrator.setUp(scene.dynamic.max_newton));
+    integrator.setErrorTolerance(opts.adaptiveTolerance);
     const bool restart = !opts.restartPath.empty();
     CheckpointReader restartFile(PETSC_COMM_WORLD);
     if (restart) {

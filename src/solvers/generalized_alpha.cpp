@@ -2,6 +2,8 @@
 
 #include "boomdyn/log_events.hpp"
 
+#include <algorithm>
+#include <cmath>
 #include <stdexcept>
 #include <string>
 
@@ -160,6 +162,32 @@ PetscErrorCode GeneralizedAlpha::step(double h, StepResult *result)
     if (!relocated || !result->event.empty()) break;
   }
   if (relocated && result->event.empty() && result->converged) result->converged = false; // still moving: give up this h
+  if (result->converged) {
+    // Local error estimate from the change of the acceleration-like variable
+    // over the step, on this rank's coordinates (not the multipliers).
+    PetscInt begin, end, lo;
+    const PetscScalar *x, *qp, *a;
+    PetscCall(assembler_.coordinateRange(&begin, &end));
+    PetscCall(VecGetOwnershipRange(x_, &lo, nullptr));
+    PetscCall(VecGetArrayRead(x_, &x));
+    PetscCall(VecGetArrayRead(qp_, &qp));
+    PetscCall(VecGetArrayRead(a_, &a));
+    double local = 0;
+    for (PetscInt g = begin; g < end; ++g) {
+      const PetscInt i = g - lo;
+      local = std::max(local, std::abs((x[i] - qp[i]) / h2b - a[i]));
+    }
+    PetscCall(VecRestoreArrayRead(a_, &a));
+    PetscCall(VecRestoreArrayRead(qp_, &qp));
+    PetscCall(VecRestoreArrayRead(x_, &x));
+    double change;
+    PetscCallMPI(MPI_Allreduce(&local, &change, 1, MPI_DOUBLE, MPI_MAX, assembler_.comm()));
+    result->errorEstimate = h * h * std::abs(p.beta - 1.0 / 6.0) * change;
+    if (errorTolerance_ > 0 && result->errorEstimate > errorTolerance_) {
+      result->converged = false;
+      result->errorRejected = true;
+    }
+  }
   if (result->converged) {
     // a_{n+1} = (q_{n+1} - qp)/(h^2 beta); qdd, v from the affine maps.
     PetscCall(VecWAXPY(a_, -1.0, qp_, x_));

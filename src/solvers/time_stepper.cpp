@@ -36,6 +36,26 @@ PetscErrorCode integrate(GeneralizedAlpha &integrator, const DynamicSpec &spec,
       summary->steps = info.step;
       PetscFunctionReturn(0);
     }
+    const double tol = integrator.errorTolerance();
+    // Step-size factor from the error estimate (third-order local error in h).
+    auto factor = [&](double err) { return err > 0 ? 0.9 * std::cbrt(tol / err) : 2.0; };
+    if (r.errorRejected) {
+      // Adaptive steps: too large an error is a normal rejection, not a warning.
+      ++summary->rejected;
+      st.rejected = summary->rejected;
+      h = attempt * std::clamp(factor(r.errorEstimate), 0.2, 0.9);
+      PetscCall(PetscInfo(nullptr, "t = %g s: step %g s rejected, error estimate %g > %g; retrying with %g s\n",
+                          integrator.time(), attempt, r.errorEstimate, tol, h));
+      if (h < spec.dt_min) {
+        std::ostringstream os;
+        os << "the error estimate " << r.errorEstimate << " at t = " << integrator.time()
+           << " s stays above -boom_adaptive_tol " << tol << " down to dt_min = " << spec.dt_min << " s";
+        summary->failure = os.str();
+        summary->steps = info.step;
+        PetscFunctionReturn(0);
+      }
+      continue;
+    }
     if (!r.converged) {
       ++summary->rejected;
       h = 0.5 * attempt;
@@ -61,8 +81,15 @@ PetscErrorCode integrate(GeneralizedAlpha &integrator, const DynamicSpec &spec,
     info.iterations = r.iterations;
     info.rejected = summary->rejected;
     summary->newtonIterations += r.iterations;
-    // Grow back towards the scene's dt after a few successes at a cut step.
-    if (h < spec.dt && ++successesSinceCut >= 4) {
+    if (tol > 0) {
+      // Adaptive: the next step from the error estimate, at most the scene's
+      // dt. An accepted step is never followed by a smaller one, and h grows
+      // only by 1.5x or more, so that a reused Jacobian (keyed to h) stays
+      // valid over runs of steps.
+      const double f = factor(r.errorEstimate);
+      if (f >= 1.5) h = std::min(spec.dt, attempt * std::min(f, 2.0));
+    } else if (h < spec.dt && ++successesSinceCut >= 4) {
+      // Grow back towards the scene's dt after a few successes at a cut step.
       h = std::min(spec.dt, 2.0 * h);
       successesSinceCut = 0;
     }

@@ -126,3 +126,33 @@ TEST(TimeStepping, EndsOnTEndWithoutSliverSteps)
     EXPECT_EQ(run.summary.steps, static_cast<PetscInt>(std::ceil(scene.dynamic.t_end / h - 1e-6))) << "h = " << h;
   }
 }
+
+// Adaptive steps (-boom_adaptive_tol): the error of the tip at t = 0.1 s
+// against a fine fixed-step reference falls with the tolerance, and the
+// controller takes fewer steps where the motion is smooth.
+TEST(AdaptiveSteps, ErrorFollowsTheTolerance)
+{
+  Scene fine = cantilever(1e-3, 0.8);
+  fine.dynamic.dt = 1e-5;
+  const Vec2 reference = tipAtEnd(runDynamic(fine, PETSC_COMM_WORLD));
+  double previous = 1e300;
+  std::vector<double> errors;
+  for (double tol : {1e-5, 1e-6, 1e-7, 1e-8}) {
+    Scene scene = cantilever(1e-3, 0.8); // dt = 1e-3 is the largest step allowed
+    const DynamicHistory run = runDynamic(scene, PETSC_COMM_WORLD, tol);
+    ASSERT_TRUE(run.summary.completed) << run.summary.failure;
+    const double error = (tipAtEnd(run) - reference).norm();
+    double hmin = 1e300, hmax = 0;
+    for (std::size_t k = 1; k < run.time.size(); ++k) {
+      hmin = std::min(hmin, run.time[k] - run.time[k - 1]);
+      hmax = std::max(hmax, run.time[k] - run.time[k - 1]);
+    }
+    PetscPrintf(PETSC_COMM_WORLD, "  tol %.0e: %d steps (h %.2e ... %.2e), %d rejected, tip error %.3e m\n", tol,
+                (int)run.summary.steps, hmin, hmax, (int)run.summary.rejected, error);
+    EXPECT_LE(hmax, 1e-3 * (1 + 1e-9));
+    EXPECT_LT(error, previous) << "tol " << tol;
+    previous = error;
+    errors.push_back(error);
+  }
+  EXPECT_LT(errors.back(), errors.front() / 30); // three decades of tolerance
+}
