@@ -13,6 +13,8 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
+#include <string>
 #include <vector>
 
 namespace boomdyn::testing {
@@ -133,6 +135,30 @@ inline DynamicHistory runDynamic(const Scene &scene, MPI_Comm comm = PETSC_COMM_
   VecDestroy(&x);
   VecDestroy(&zero);
   return h;
+}
+
+// The paper extraction scene (inputs/paper_extraction.yaml) shortened to
+// `seconds` of smooth extraction at 1 m/s from t = 0, so that the contact
+// points cross elements within a short run.
+inline Scene shortenedExtraction(double seconds)
+{
+  Scene scene = readSceneFile(std::string(BOOMDYN_SOURCE_DIR) + "/inputs/paper_extraction.yaml");
+  for (auto &c : scene.constraints)
+    if (c.type == ConstraintSpec::Type::ExtractionDrive)
+      c.displacement = TimeFunction::smoothStep(0.0, seconds, 0.0, seconds);
+  scene.dynamic.t_end = seconds;
+  return scene;
+}
+
+// max |a - b| / max |a| over two states of the same layout.
+inline double maxRelativeDifference(const std::vector<double> &a, const std::vector<double> &b)
+{
+  double diff = 0, norm = 0;
+  for (std::size_t i = 0; i < a.size() && i < b.size(); ++i) {
+    diff = std::max(diff, std::abs(a[i] - b[i]));
+    norm = std::max(norm, std::abs(a[i]));
+  }
+  return norm > 0 ? diff / norm : diff;
 }
 
 } // namespace boomdyn::testing

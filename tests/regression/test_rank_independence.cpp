@@ -69,11 +69,8 @@ TEST(RankIndependence, ExtractionSceneMatchesSingleRank)
   PetscMPIInt size;
   MPI_Comm_size(PETSC_COMM_WORLD, &size);
   if (size == 1) GTEST_SKIP() << "run under mpiexec -n 2 (CTest: mpi2.regression)";
-  Scene scene = readSceneFile(std::string(BOOMDYN_SOURCE_DIR) + "/inputs/paper_extraction.yaml");
   // Shortened: 0.5 m of extraction in 0.5 s, so the contact points cross elements.
-  for (auto &c : scene.constraints)
-    if (c.type == ConstraintSpec::Type::ExtractionDrive) c.displacement = TimeFunction::smoothStep(0.0, 0.5, 0.0, 0.5);
-  scene.dynamic.t_end = 0.5;
+  const Scene scene = shortenedExtraction(0.5);
   const DynamicHistory distributed = runDynamic(scene, PETSC_COMM_WORLD);
   const DynamicHistory alone = runDynamic(scene, PETSC_COMM_SELF);
   ASSERT_TRUE(distributed.summary.completed) << distributed.summary.failure;
@@ -156,21 +153,14 @@ TEST(RankIndependence, MetisItemPartitionMatchesSingleRank)
   PetscMPIInt size;
   MPI_Comm_size(PETSC_COMM_WORLD, &size);
   if (size == 1) GTEST_SKIP() << "run under mpiexec -n 2 (CTest: mpi2.regression)";
-  Scene scene = readSceneFile(std::string(BOOMDYN_SOURCE_DIR) + "/inputs/paper_extraction.yaml");
-  for (auto &c : scene.constraints)
-    if (c.type == ConstraintSpec::Type::ExtractionDrive) c.displacement = TimeFunction::smoothStep(0.0, 0.5, 0.0, 0.5);
-  scene.dynamic.t_end = 0.5;
+  const Scene scene = shortenedExtraction(0.5);
   PetscOptionsSetValue(nullptr, "-boom_partition", "metis");
   const DynamicHistory distributed = runDynamic(scene, PETSC_COMM_WORLD);
   PetscOptionsClearValue(nullptr, "-boom_partition");
   const DynamicHistory alone = runDynamic(scene, PETSC_COMM_SELF);
   ASSERT_TRUE(distributed.summary.completed) << distributed.summary.failure;
   ASSERT_TRUE(alone.summary.completed) << alone.summary.failure;
-  double diff = 0, norm = 0;
-  for (std::size_t i = 0; i < alone.finalState.size(); ++i) {
-    diff = std::max(diff, std::abs(distributed.finalState[i] - alone.finalState[i]));
-    norm = std::max(norm, std::abs(alone.finalState[i]));
-  }
-  PetscPrintf(PETSC_COMM_WORLD, "  extraction, METIS item partition on %d ranks vs 1: %.3e relative\n", size, diff / norm);
-  EXPECT_LT(diff / norm, 1e-10);
+  const double d = maxRelativeDifference(alone.finalState, distributed.finalState);
+  PetscPrintf(PETSC_COMM_WORLD, "  extraction, METIS item partition on %d ranks vs 1: %.3e relative\n", size, d);
+  EXPECT_LT(d, 1e-10);
 }

@@ -13,16 +13,6 @@ using namespace boomdyn::testing;
 
 namespace {
 
-double maxRelativeDifference(const std::vector<double> &a, const std::vector<double> &b)
-{
-  double diff = 0, norm = 0;
-  for (std::size_t i = 0; i < a.size(); ++i) {
-    diff = std::max(diff, std::abs(a[i] - b[i]));
-    norm = std::max(norm, std::abs(a[i]));
-  }
-  return diff / norm;
-}
-
 DynamicHistory runWithSchur(const Scene &scene, MPI_Comm comm)
 {
   PetscOptionsSetValue(nullptr, "-boom_schur_dd", "1");
@@ -35,10 +25,7 @@ DynamicHistory runWithSchur(const Scene &scene, MPI_Comm comm)
 
 TEST(SchurComplementSolver, ExtractionSceneMatchesDefaultSolver)
 {
-  Scene scene = readSceneFile(std::string(BOOMDYN_SOURCE_DIR) + "/inputs/paper_extraction.yaml");
-  for (auto &c : scene.constraints)
-    if (c.type == ConstraintSpec::Type::ExtractionDrive) c.displacement = TimeFunction::smoothStep(0.0, 0.3, 0.0, 0.3);
-  scene.dynamic.t_end = 0.3;
+  const Scene scene = shortenedExtraction(0.3);
   const DynamicHistory schur = runWithSchur(scene, PETSC_COMM_WORLD);
   const DynamicHistory reference = runDynamic(scene, PETSC_COMM_SELF);
   ASSERT_TRUE(schur.summary.completed) << schur.summary.failure;
