@@ -24,6 +24,9 @@ public:
   virtual void coordinates(std::vector<PetscInt> &dofs) const = 0;
   // Fill C and Cq always; gamma when v != nullptr; H when w != nullptr (weights per row).
   virtual void evaluate(double t, const double *q, const double *v, const double *w, ConstraintEval &out) const = 0;
+  // False when C does not depend on t explicitly (C_t = 0): such constraints
+  // do no work, and the energy balance skips them.
+  virtual bool dependsOnTime() const { return true; }
   // Unit of the rows, for messages ("m", "rad", ...).
   virtual const char *rowUnit(int row) const { (void)row; return "m"; }
 };

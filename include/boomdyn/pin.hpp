@@ -16,6 +16,7 @@ public:
   int numRows() const override { return 2; }
   void coordinates(std::vector<PetscInt> &dofs) const override;
   void evaluate(double t, const double *q, const double *v, const double *w, ConstraintEval &out) const override;
+  bool dependsOnTime() const override { return false; }
 
 private:
   std::string name_;

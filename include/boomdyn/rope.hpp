@@ -22,6 +22,7 @@ public:
   int numRows() const override { return 1; }
   void coordinates(std::vector<PetscInt> &dofs) const override;
   void evaluate(double t, const double *q, const double *v, const double *w, ConstraintEval &out) const override;
+  bool dependsOnTime() const override { return false; }
   // Length of the rope when the points are at the given coordinates (values in coordinates() order).
   double spannedLength(const double *q) const;
 

@@ -43,6 +43,7 @@ void ConstraintItem::energy(const AssemblyContext &ctx, const ItemValues &in, En
   // (C_q v + C_t = 0 along the motion): zero unless C depends on time
   // explicitly, as a drive's does. C_t by a central difference in t, which
   // is exact (zero) for constraints without time dependence.
+  if (!constraint_->dependsOnTime()) return;
   const double dt = 1e-6 * std::max(1.0, std::abs(ctx.t));
   ConstraintEval plus, minus;
   constraint_->evaluate(ctx.t + dt, in.q, nullptr, nullptr, plus);

@@ -231,3 +231,34 @@ TEST(SlidingJointRelocation, HysteresisBandAtNodesAndContinuity)
   joint.setTrackLocation(0.2);
   EXPECT_EQ(joint.trackLocation().element, 0);
 }
+
+// Constraints that say they do not depend on time (the energy balance skips
+// their power) give the same C at any t; the drives do depend on it.
+TEST(ConstraintTimeDependence, DeclaredIndependentMeansSameC)
+{
+  AncfBeam b1("b1", 2.0, 4, kSection, Vec2(0, 0), 0.1, 0);
+  AncfBeam b2("b2", 2.0, 4, kSection, Vec2(0.5, 0.05), 0.1, 20);
+  RigidBody b3("b3", 2.0, 10.0, Vec2(1.0, 0.1), 0.1, 40);
+  std::vector<double> q0(44);
+  b1.initialCoordinates(q0.data());
+  b2.initialCoordinates(q0.data() + 20);
+  b3.initialCoordinates(q0.data() + 40);
+  q0[43] = 0.7;
+  const Pin pin("pin", b1, 0.3, Vec2(0.2, 0.1));
+  const Rope rope("rope", {&b1, 1.9}, {&b2, 2.0}, {&b3, 0.0}, 3.0);
+  const SlidingJoint slide("slide", b1, b2, 0.4, 43, 0.7);
+  const AngleDrive drive("drive", b1, 0.3, TimeFunction::sine(0.2, 1.0, 0.0, 0.4));
+  std::mt19937 rng(7);
+  for (const Constraint *c : std::initializer_list<const Constraint *>{&pin, &rope, &slide, &drive}) {
+    std::vector<PetscInt> dofs;
+    c->coordinates(dofs);
+    const std::vector<double> q = randomState(dofs, rng, q0);
+    ConstraintEval at0, at1;
+    c->evaluate(0.3, q.data(), nullptr, nullptr, at0);
+    c->evaluate(1.7, q.data(), nullptr, nullptr, at1);
+    if (c->dependsOnTime()) EXPECT_GT((at1.C - at0.C).norm(), 1e-6) << c->name();
+    else EXPECT_EQ((at1.C - at0.C).norm(), 0.0) << c->name();
+  }
+  EXPECT_FALSE(pin.dependsOnTime());
+  EXPECT_TRUE(drive.dependsOnTime());
+}
