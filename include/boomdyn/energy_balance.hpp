@@ -13,7 +13,11 @@
 // is a one-time error of the scheme, large on fine meshes). The check
 // ends such a run with a clear message instead. The excess E - E(0) - W_in
 // is compared with the energy the motion has involved: the largest kinetic
-// plus strain energy so far plus the work exchanged with loads and drives.
+// plus strain energy so far plus the work exchanged with loads and drives,
+// above two floors: the round-off of the energy sums (the strain energy of
+// very short elements, reported by the items) and what the trapezoidal rule
+// may miss of W_in (half the change of the power over each step times h),
+// which dominates while a load rises from nothing and the energies are tiny.
 #pragma once
 
 #include "boomdyn/work_item.hpp"
@@ -36,6 +40,7 @@ public:
 private:
   double tolerance_;
   int steps_ = 0;
+  double roundoff_ = 0, quadrature_ = 0;
   double e0_ = 0, previousPower_ = 0, work_ = 0, exchanged_ = 0, activity_ = 0, excess_ = 0;
 };
 

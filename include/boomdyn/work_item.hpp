@@ -54,6 +54,10 @@ struct EnergyParts {
   // Rate at which the explicit time dependence of loads and driven
   // constraints feeds energy in (W): dE/dt = inputPower - dissipation.
   double inputPower = 0;
+  // Size of the round-off in these sums (J): the strain energy of a short
+  // element comes from differences of nodal values of size |q| over its
+  // length, so it carries an error that grows like |q|^2 / l^3 (bending).
+  double roundoff = 0;
 };
 
 class WorkItem {

@@ -1,5 +1,8 @@
 #include "boomdyn/beam_element_item.hpp"
 
+#include <cmath>
+#include <limits>
+
 namespace boomdyn {
 
 BeamElementItem::BeamElementItem(const AncfBeam &beam, int element, std::shared_ptr<const ancf::Mat8> mass,
@@ -38,7 +41,16 @@ void BeamElementItem::energy(const AssemblyContext &ctx, const ItemValues &in, E
 {
   const Eigen::Map<const ancf::Vec8> q(in.q), v(in.v);
   e.kinetic += 0.5 * v.dot((*mass_) * v);
-  e.strain += ancf::strainEnergy(beam_->section(), beam_->elementLength(), q);
+  const ancf::Section &sec = beam_->section();
+  const double l = beam_->elementLength(), u = ancf::strainEnergy(sec, l, q);
+  e.strain += u;
+  // Round-off of the curvature eps |q| / l^2 and of the axial strain eps |q| / l,
+  // entering U = l (EA eps^2 + EI kappa^2) / 2 to first order through the
+  // strain present and to second order on their own.
+  const double eps = std::numeric_limits<double>::epsilon(), size = q.cwiseAbs().maxCoeff();
+  const double dk = eps * size / (l * l), de = eps * size / l;
+  e.roundoff += 2.0 * std::sqrt(2.0 * std::abs(u) * l) * (std::sqrt(sec.EI) * dk + std::sqrt(sec.EA) * de) +
+                l * (sec.EI * dk * dk + sec.EA * de * de);
   // Gravity is a constant generalized force: V = -Q_g . e.
   e.potential -= ctx.loadFactor * gravity_.dot(q);
 }

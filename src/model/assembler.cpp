@@ -256,9 +256,9 @@ PetscErrorCode Assembler::diagnostics(const AssemblyContext &ctx, Vec x, EnergyP
     items_[k]->energy(ctx, vals, e);
     viol = std::max(viol, items_[k]->constraintViolation(ctx, vals));
   }
-  double sums[4] = {e.kinetic, e.strain, e.potential, e.inputPower}, global[4];
-  PetscCallMPI(MPI_Allreduce(sums, global, 4, MPI_DOUBLE, MPI_SUM, comm_));
-  if (energy) *energy = {global[0], global[1], global[2], global[3]};
+  double sums[5] = {e.kinetic, e.strain, e.potential, e.inputPower, e.roundoff}, global[5];
+  PetscCallMPI(MPI_Allreduce(sums, global, 5, MPI_DOUBLE, MPI_SUM, comm_));
+  if (energy) *energy = {global[0], global[1], global[2], global[3], global[4]};
   double gviol;
   PetscCallMPI(MPI_Allreduce(&viol, &gviol, 1, MPI_DOUBLE, MPI_MAX, comm_));
   if (maxViolation) *maxViolation = gviol;
