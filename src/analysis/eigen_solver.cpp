@@ -1,5 +1,7 @@
 #include "boomdyn/eigen_solver.hpp"
 
+#include "boomdyn/gather.hpp"
+
 #include "boomdyn/direct_solver.hpp"
 
 #include "boomdyn/log_events.hpp"
@@ -137,13 +139,10 @@ PetscErrorCode solveModes(Assembler &assembler, double t, Vec q, Vec lambda, int
     result->omega2.push_back(w);
     result->frequencyHz.push_back(std::sqrt(std::max(w, 0.0)) / (2.0 * M_PI));
     result->residuals.push_back(err);
-    PetscCall(VecScatterBegin(toZero, xr, gathered, INSERT_VALUES, SCATTER_FORWARD));
-    PetscCall(VecScatterEnd(toZero, xr, gathered, INSERT_VALUES, SCATTER_FORWARD));
+    std::vector<double> shape;
+    PetscCall(scatterValues(toZero, xr, gathered, shape));
     if (rank == 0) {
-      const PetscScalar *g;
-      PetscCall(VecGetArrayRead(gathered, &g));
-      std::vector<double> shape(g, g + nq);
-      PetscCall(VecRestoreArrayRead(gathered, &g));
+      shape.resize(nq); // coordinates only
       // Sign and scale fixed so that runs on any rank count compare directly.
       double big = 0;
       for (double s : shape)

@@ -1,5 +1,7 @@
 #include "boomdyn/sensors.hpp"
 
+#include "boomdyn/gather.hpp"
+
 #include "boomdyn/lugre_friction.hpp"
 
 #include <algorithm>
@@ -27,25 +29,11 @@ static PetscErrorCode scatterToRankZero(Vec layout, int rank, const std::vector<
   PetscFunctionReturn(0);
 }
 
-static PetscErrorCode gatherTo(VecScatter sc, Vec src, Vec dst, std::vector<double> &out)
-{
-  const PetscScalar *a;
-  PetscInt n;
-  PetscFunctionBeginUser;
-  PetscCall(VecScatterBegin(sc, src, dst, INSERT_VALUES, SCATTER_FORWARD));
-  PetscCall(VecScatterEnd(sc, src, dst, INSERT_VALUES, SCATTER_FORWARD));
-  PetscCall(VecGetLocalSize(dst, &n));
-  PetscCall(VecGetArrayRead(dst, &a));
-  out.assign(a, a + n);
-  PetscCall(VecRestoreArrayRead(dst, &a));
-  PetscFunctionReturn(0);
-}
-
 PetscErrorCode SensorProbe::readFrames(Vec q, std::vector<double> &deflections)
 {
   std::vector<double> vals;
   PetscFunctionBeginUser;
-  PetscCall(gatherTo(frameScatter_, q, frameValues_, vals));
+  PetscCall(scatterValues(frameScatter_, q, frameValues_, vals));
   deflections.clear();
   if (rank_ != 0) PetscFunctionReturn(0);
   for (const Frame &f : frames_) {
@@ -70,9 +58,9 @@ PetscErrorCode SensorProbe::readFriction(Vec q, Vec v, Vec lambda, std::vector<d
 {
   std::vector<double> qs, vs, ln;
   PetscFunctionBeginUser;
-  PetscCall(gatherTo(frictionScatter_, q, frictionValues_, qs));
-  PetscCall(gatherTo(frictionScatter_, v, frictionValues_, vs));
-  PetscCall(gatherTo(normalScatter_, lambda, normalValues_, ln));
+  PetscCall(scatterValues(frictionScatter_, q, frictionValues_, qs));
+  PetscCall(scatterValues(frictionScatter_, v, frictionValues_, vs));
+  PetscCall(scatterValues(normalScatter_, lambda, normalValues_, ln));
   values.clear();
   for (std::size_t k = 0; k < ln.size(); ++k) {
     const double row[5] = {qs[2 * k], vs[2 * k], qs[2 * k + 1], vs[2 * k + 1], ln[k]};
@@ -84,8 +72,8 @@ PetscErrorCode SensorProbe::readFriction(Vec q, Vec v, Vec lambda, std::vector<d
 PetscErrorCode SensorProbe::readJoints(Vec q, Vec lambda, std::vector<double> &slacks, std::vector<double> &multipliers)
 {
   PetscFunctionBeginUser;
-  PetscCall(gatherTo(slackScatter_, q, slacks_, slacks));
-  PetscCall(gatherTo(lambdaScatter_, lambda, multipliers_, multipliers));
+  PetscCall(scatterValues(slackScatter_, q, slacks_, slacks));
+  PetscCall(scatterValues(lambdaScatter_, lambda, multipliers_, multipliers));
   PetscFunctionReturn(0);
 }
 

@@ -1,5 +1,7 @@
 #include "boomdyn/checkpoint.hpp"
 
+#include "boomdyn/gather.hpp"
+
 #include "boomdyn/hdf5_file.hpp"
 
 #include <hdf5.h>
@@ -12,29 +14,6 @@ namespace boomdyn {
 namespace {
 
 // Gather a distributed vector on rank 0.
-PetscErrorCode gatherToZero(Vec v, std::vector<double> &out)
-{
-  VecScatter sc;
-  Vec all;
-  PetscMPIInt rank;
-  PetscFunctionBeginUser;
-  PetscCallMPI(MPI_Comm_rank(PetscObjectComm((PetscObject)v), &rank));
-  PetscCall(VecScatterCreateToZero(v, &sc, &all));
-  PetscCall(VecScatterBegin(sc, v, all, INSERT_VALUES, SCATTER_FORWARD));
-  PetscCall(VecScatterEnd(sc, v, all, INSERT_VALUES, SCATTER_FORWARD));
-  if (rank == 0) {
-    const PetscScalar *a;
-    PetscInt n;
-    PetscCall(VecGetLocalSize(all, &n));
-    PetscCall(VecGetArrayRead(all, &a));
-    out.assign(a, a + n);
-    PetscCall(VecRestoreArrayRead(all, &a));
-  }
-  PetscCall(VecScatterDestroy(&sc));
-  PetscCall(VecDestroy(&all));
-  PetscFunctionReturn(0);
-}
-
 // Raw HDF5 reading (rank 0).
 std::vector<double> readDoubles(hid_t file, const std::string &path)
 {

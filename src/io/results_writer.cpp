@@ -1,5 +1,7 @@
 #include "boomdyn/results_writer.hpp"
 
+#include "boomdyn/gather.hpp"
+
 #include "boomdyn/log_events.hpp"
 #include "boomdyn/rope.hpp"
 #include "boomdyn/ancf_beam.hpp"
@@ -197,16 +199,7 @@ void ResultsWriter::appendStepRow(double t, double dt, PetscInt iterations, doub
 PetscErrorCode ResultsWriter::gather(Vec v, std::vector<double> &out)
 {
   PetscFunctionBeginUser;
-  PetscCall(VecScatterBegin(toZero_, v, gathered_, INSERT_VALUES, SCATTER_FORWARD));
-  PetscCall(VecScatterEnd(toZero_, v, gathered_, INSERT_VALUES, SCATTER_FORWARD));
-  if (rank_ == 0) {
-    const PetscScalar *g;
-    PetscInt n;
-    PetscCall(VecGetLocalSize(gathered_, &n));
-    PetscCall(VecGetArrayRead(gathered_, &g));
-    out.assign(g, g + n);
-    PetscCall(VecRestoreArrayRead(gathered_, &g));
-  }
+  PetscCall(scatterValues(toZero_, v, gathered_, out));
   PetscFunctionReturn(0);
 }
 
