@@ -12,6 +12,8 @@ import sys
 
 import h5py
 import matplotlib.image
+sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+import script_checks  # noqa: E402
 
 boomdyn, source, work = sys.argv[1:4]
 out = os.path.join(work, "stick_slip_scene.h5")
@@ -42,9 +44,4 @@ subprocess.run([sys.executable, os.path.join(source, "postprocess", "plot_stick_
                stdout=subprocess.DEVNULL)
 img = matplotlib.image.imread(png)
 checks.append((img.size > 0 and float(img.std()) > 0, "Fig. 5 plot is a non-empty picture"))
-failed = 0
-for ok, what in checks:
-    print(("ok   " if ok else "FAIL ") + what)
-    failed += not ok
-print("%d passed, %d failed" % (len(checks) - failed, failed))
-sys.exit(1 if failed else 0)
+sys.exit(script_checks.report(checks))

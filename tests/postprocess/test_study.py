@@ -15,6 +15,8 @@ import sys
 
 import h5py
 import numpy as np
+sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+import script_checks  # noqa: E402
 
 boomdyn, source, work = sys.argv[1:4]
 sys.path.insert(0, os.path.join(source, "postprocess"))
@@ -132,9 +134,4 @@ done = subprocess.run([sys.executable, script, os.path.join(source, "inputs", "c
                       stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
 check(done.returncode == 0 and open(stem + ".md").read().count("failed (exit") == 2, "failed runs reported")
 
-failed = 0
-for ok, what in checks:
-    print(("ok   " if ok else "FAIL ") + what)
-    failed += not ok
-print("%d passed, %d failed" % (len(checks) - failed, failed))
-sys.exit(1 if failed else 0)
+sys.exit(script_checks.report(checks))

@@ -14,6 +14,8 @@ import xml.etree.ElementTree as ET
 import h5py
 import meshio
 import numpy as np
+sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+import script_checks  # noqa: E402
 
 boomdyn, source, work = sys.argv[1:4]
 work = os.path.join(work, "test_output", "xdmf")
@@ -98,9 +100,4 @@ with h5py.File(out) as f:
 print("geometry: largest difference %.1e m over all snapshots; the booms moved up to %.1e m" % (worst_geometry, moved))
 checks.append((worst_geometry < 1e-12 and moved > 1e-5, "geometry of every snapshot (and it moves)"))
 checks.append((any(len(P) > 2 * 6 for P in [expected(Q[0], Vs[0], layout, lengths)[0]]), "beams sampled inside elements"))
-failed = 0
-for ok, what in checks:
-    print(("ok   " if ok else "FAIL ") + what)
-    failed += not ok
-print("%d passed, %d failed" % (len(checks) - failed, failed))
-sys.exit(1 if failed else 0)
+sys.exit(script_checks.report(checks))

@@ -16,6 +16,8 @@ import time
 
 import h5py
 import numpy as np
+sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+import script_checks  # noqa: E402
 
 boomdyn, source, work = sys.argv[1:4]
 work = os.path.join(work, "test_output", "restart")
@@ -95,9 +97,4 @@ checks.append((np.array_equal(qa, qc) and np.array_equal(va, vc) and ta == tc,
                "continued after SIGINT: final state bitwise equal to the uninterrupted run"))
 bad = run(["-o", path("bad.h5"), "-boom_restart", path("does-not-exist.chk.h5")], check=False)
 checks.append((bad.returncode != 0 and "does-not-exist.chk.h5" in bad.stdout, "a missing restart file is an error naming it"))
-failed = 0
-for ok, what in checks:
-    print(("ok   " if ok else "FAIL ") + what)
-    failed += not ok
-print("%d passed, %d failed" % (len(checks) - failed, failed))
-sys.exit(1 if failed else 0)
+sys.exit(script_checks.report(checks))
