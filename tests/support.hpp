@@ -137,6 +137,16 @@ inline DynamicHistory runDynamic(const Scene &scene, MPI_Comm comm = PETSC_COMM_
   return h;
 }
 
+// runDynamic with one boomdyn option set (e.g. "-boom_schur_dd", "1") for
+// this run only.
+inline DynamicHistory runDynamicWithOption(const Scene &scene, MPI_Comm comm, const char *name, const char *value)
+{
+  PetscOptionsSetValue(nullptr, name, value);
+  DynamicHistory h = runDynamic(scene, comm);
+  PetscOptionsClearValue(nullptr, name);
+  return h;
+}
+
 // The paper extraction scene (inputs/paper_extraction.yaml) shortened to
 // `seconds` of smooth extraction at 1 m/s from t = 0, so that the contact
 // points cross elements within a short run.

@@ -154,9 +154,7 @@ TEST(RankIndependence, MetisItemPartitionMatchesSingleRank)
   MPI_Comm_size(PETSC_COMM_WORLD, &size);
   if (size == 1) GTEST_SKIP() << "run under mpiexec -n 2 (CTest: mpi2.regression)";
   const Scene scene = shortenedExtraction(0.5);
-  PetscOptionsSetValue(nullptr, "-boom_partition", "metis");
-  const DynamicHistory distributed = runDynamic(scene, PETSC_COMM_WORLD);
-  PetscOptionsClearValue(nullptr, "-boom_partition");
+  const DynamicHistory distributed = runDynamicWithOption(scene, PETSC_COMM_WORLD, "-boom_partition", "metis");
   const DynamicHistory alone = runDynamic(scene, PETSC_COMM_SELF);
   ASSERT_TRUE(distributed.summary.completed) << distributed.summary.failure;
   ASSERT_TRUE(alone.summary.completed) << alone.summary.failure;

@@ -11,22 +11,12 @@
 using namespace boomdyn;
 using namespace boomdyn::testing;
 
-namespace {
-
-DynamicHistory runWithReuse(const Scene &scene, bool reuse)
-{
-  if (reuse) PetscOptionsSetValue(nullptr, "-boom_jacobian_reuse", "1");
-  DynamicHistory h = runDynamic(scene, PETSC_COMM_SELF);
-  if (reuse) PetscOptionsClearValue(nullptr, "-boom_jacobian_reuse");
-  return h;
-}
-
-} // namespace
 
 TEST(JacobianReuse, ExtractionMatchesFullNewtonWithFewerFactorizations)
 {
   const Scene scene = shortenedExtraction(0.5);
-  const DynamicHistory full = runWithReuse(scene, false), reused = runWithReuse(scene, true);
+  const DynamicHistory full = runDynamic(scene, PETSC_COMM_SELF),
+                       reused = runDynamicWithOption(scene, PETSC_COMM_SELF, "-boom_jacobian_reuse", "1");
   ASSERT_TRUE(full.summary.completed) << full.summary.failure;
   ASSERT_TRUE(reused.summary.completed) << reused.summary.failure;
   ASSERT_EQ(full.finalState.size(), reused.finalState.size());
@@ -46,7 +36,7 @@ TEST(JacobianReuse, ExtractionMatchesFullNewtonWithFewerFactorizations)
 TEST(JacobianReuse, ContactPointsChangeElementsOnlyWhenTheyCrossOne)
 {
   const Scene scene = shortenedExtraction(0.5);
-  const DynamicHistory h = runWithReuse(scene, true);
+  const DynamicHistory h = runDynamicWithOption(scene, PETSC_COMM_SELF, "-boom_jacobian_reuse", "1");
   ASSERT_TRUE(h.summary.completed) << h.summary.failure;
   // Element crossings of every joint along its slack history.
   Model model(scene);

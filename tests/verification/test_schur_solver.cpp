@@ -11,22 +11,11 @@
 using namespace boomdyn;
 using namespace boomdyn::testing;
 
-namespace {
-
-DynamicHistory runWithSchur(const Scene &scene, MPI_Comm comm)
-{
-  PetscOptionsSetValue(nullptr, "-boom_schur_dd", "1");
-  DynamicHistory h = runDynamic(scene, comm);
-  PetscOptionsClearValue(nullptr, "-boom_schur_dd");
-  return h;
-}
-
-} // namespace
 
 TEST(SchurComplementSolver, ExtractionSceneMatchesDefaultSolver)
 {
   const Scene scene = shortenedExtraction(0.3);
-  const DynamicHistory schur = runWithSchur(scene, PETSC_COMM_WORLD);
+  const DynamicHistory schur = runDynamicWithOption(scene, PETSC_COMM_WORLD, "-boom_schur_dd", "1");
   const DynamicHistory reference = runDynamic(scene, PETSC_COMM_SELF);
   ASSERT_TRUE(schur.summary.completed) << schur.summary.failure;
   ASSERT_TRUE(reference.summary.completed) << reference.summary.failure;
@@ -41,7 +30,7 @@ TEST(SchurComplementSolver, LongCantileverMatchesDefaultSolver)
   Scene scene = readSceneFile(std::string(BOOMDYN_SOURCE_DIR) + "/benchmarks/scenes/long_boom.yaml");
   scene.bodies[0].elements = 400;
   scene.dynamic.t_end = 0.03;
-  const DynamicHistory schur = runWithSchur(scene, PETSC_COMM_WORLD);
+  const DynamicHistory schur = runDynamicWithOption(scene, PETSC_COMM_WORLD, "-boom_schur_dd", "1");
   const DynamicHistory reference = runDynamic(scene, PETSC_COMM_SELF);
   ASSERT_TRUE(schur.summary.completed) << schur.summary.failure;
   ASSERT_TRUE(reference.summary.completed) << reference.summary.failure;
