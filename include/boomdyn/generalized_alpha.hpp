@@ -85,6 +85,7 @@ private:
   NewtonSolver newton_;
   SliderTracker sliders_;
   double t_ = 0, massScale_ = 1, errorTolerance_ = 0;
+  bool hasDrives_ = false; // some constraint depends on time (its power needs the multipliers)
   Vec q_ = nullptr, v_ = nullptr, qdd_ = nullptr, a_ = nullptr, lambda_ = nullptr;
   Vec x_ = nullptr, qp_ = nullptr, vc_ = nullptr, ac_ = nullptr, zero_ = nullptr;
   IS lambdaIS_ = nullptr;

@@ -32,6 +32,7 @@ PetscErrorCode GeneralizedAlpha::setUp(PetscInt maxNewton)
   for (Vec *v : {&q_, &v_, &qdd_, &a_, &lambda_, &x_, &qp_, &vc_, &ac_, &zero_}) PetscCall(assembler_.createVector(v));
   PetscCall(newton_.setUp(assembler_, nullptr, maxNewton));
   PetscCall(sliders_.setUp(x_));
+  for (const ConstraintItem *c : assembler_.model().constraints()) hasDrives_ = hasDrives_ || c->constraint().dependsOnTime();
   PetscReal stiffness;
   PetscCall(assembler_.characteristicScales(zero_, &massScale_, &stiffness));
   if (massScale_ <= 0) massScale_ = 1.0;
@@ -243,12 +244,16 @@ PetscErrorCode GeneralizedAlpha::diagnostics(EnergyParts *energy, PetscReal *vio
   AssemblyContext ctx;
   ctx.t = t_;
   ctx.kin = {1.0, 0.0, 0.0};
-  // q from q_ itself (cQ = 1, qc = 0), v from v_ (cV = 0, vc = v_), and the
-  // unscaled multipliers for the power of driven constraints (qp_ is free
-  // between steps).
+  // q from q_ itself (cQ = 1, qc = 0), v from v_ (cV = 0, vc = v_). Only
+  // driven constraints read multipliers here (their power): for them, a copy
+  // of q_ with the unscaled multipliers (qp_ is free between steps).
+  PetscCall(assembler_.setOffsets(nullptr, v_, nullptr));
+  if (!hasDrives_) {
+    PetscCall(assembler_.diagnostics(ctx, q_, energy, violation));
+    PetscFunctionReturn(0);
+  }
   PetscCall(VecCopy(q_, qp_));
   PetscCall(assembler_.copyMultipliers(lambda_, qp_, 1.0));
-  PetscCall(assembler_.setOffsets(nullptr, v_, nullptr));
   PetscCall(assembler_.diagnostics(ctx, qp_, energy, violation));
   PetscFunctionReturn(0);
 }
