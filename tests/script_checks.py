@@ -10,3 +10,18 @@ def report(checks):
         failed += not ok
     print("%d passed, %d failed" % (len(checks) - failed, failed))
     return 1 if failed else 0
+
+
+def finish(main, results):
+    """Runs main(), which appends (passed, what) to results (and prints them as
+    it goes); a crash counts as a failed check, with its trace. Prints the
+    summary and returns the exit status."""
+    import traceback
+    try:
+        main()
+    except Exception:  # a crash counts as a failure, with its trace
+        traceback.print_exc()
+        results.append((False, "test crashed"))
+    failed = sum(not ok for ok, _ in results)
+    print("%d passed, %d failed" % (len(results) - failed, failed))
+    return 1 if failed else 0

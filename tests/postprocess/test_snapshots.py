@@ -9,9 +9,10 @@ Usage: test_snapshots.py BOOMDYN_EXECUTABLE SOURCE_DIR WORK_DIR"""
 import os
 import subprocess
 import sys
-import traceback
 
 import matplotlib
+sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+import script_checks  # noqa: E402
 
 matplotlib.use("Agg")
 import matplotlib.image  # noqa: E402
@@ -112,11 +113,4 @@ def main():
 
 
 if __name__ == "__main__":
-    try:
-        main()
-    except Exception:  # a crash counts as a failure, with its trace
-        traceback.print_exc()
-        results.append((False, "test crashed"))
-    failed = sum(not ok for ok, _ in results)
-    print("%d passed, %d failed" % (len(results) - failed, failed))
-    sys.exit(1 if failed else 0)
+    sys.exit(script_checks.finish(main, results))
