@@ -102,7 +102,7 @@ PetscErrorCode ResultsWriter::open(const std::string &path, bool overwrite, cons
       if (!model_.frictionJointNames().empty())
         file_->writeStrings("/layout/friction_joint_names", model_.frictionJointNames());
       std::vector<std::string> frames;
-      for (const FrameSensorSpec &f : sc.output.frames) frames.push_back(f.name);
+      for (const FrameSensor &f : model_.frameSensors()) frames.push_back(f.name);
       if (!frames.empty()) file_->writeStrings("/layout/frame_names", frames);
       if (!cnames.empty()) {
         file_->writeStrings("/layout/constraint_names", cnames);

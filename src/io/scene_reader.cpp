@@ -11,6 +11,8 @@
 // without our key path. Scalars are converted by hand instead.
 #include "boomdyn/scene_reader.hpp"
 
+#include "boomdyn/physics_type.hpp"
+
 #include <yaml-cpp/eventhandler.h>
 #include <yaml-cpp/yaml.h>
 
@@ -526,17 +528,19 @@ private:
   // --- sections ----------------------------------------------------------
   BodySpec parseBody(const Field &f, std::map<std::string, std::string> &taken) const;
   SectionSpec parseSection(const Field &f, bool rigid) const;
-  ConstraintSpec parseConstraint(const Field &f, std::size_t index, const Scene &scene,
-                                 std::map<std::string, std::string> &taken) const;
-  PointForceSpec parseLoad(const Field &f, std::size_t index, const Scene &scene,
-                           std::map<std::string, std::string> &taken) const;
-  FrictionSpec parseFriction(const Field &f) const;
-  PointMassSpec parseMass(const Field &f, std::size_t index, const Scene &scene,
-                          std::map<std::string, std::string> &taken) const;
+  // Components of registered physics types (physics_type.hpp).
+  void parseSection(const MapView &parent, const std::string &key, const std::string &section, Scene &scene) const;
+  ComponentSpec parseComponent(const Field &f, std::size_t index, const std::string &section, const Scene &scene,
+                               std::map<std::string, std::string> &taken) const;
+  void readKeys(const MapView &m, const TypeSchema &schema, const std::vector<const PhysicsType *> &siblings,
+                const std::string &section, const Scene &scene, const std::string &prefix, ComponentSpec &spec,
+                std::map<std::string, Field> &fields) const;
+  void readValue(const Field &f, const KeySchema &k, const std::string &section, const Scene &scene,
+                 const std::string &prefix, ComponentSpec &spec, std::map<std::string, Field> &fields) const;
   DynamicSpec parseDynamic(const Field &f) const;
   StaticSpec parseStatic(const Field &f) const;
   ModalSpec parseModal(const Field &f, bool required_nonzero) const;
-  OutputSpec parseOutput(const Field &f, const Scene &scene) const;
+  void parseOutput(const Field &f, Scene &scene) const;
 
   const Reporter &report_;
 };
@@ -568,24 +572,9 @@ void SceneParser::parse(const Field &root, Scene &scene)
   for (const Field &item : bodies)
     scene.bodies.push_back(parseBody(item, body_names));
 
-  if (const auto c = top.get("constraints")) {
-    std::map<std::string, std::string> taken;
-    const auto items = list(*c);
-    for (std::size_t i = 0; i < items.size(); ++i)
-      scene.constraints.push_back(parseConstraint(items[i], i, scene, taken));
-  }
-  if (const auto l = top.get("loads")) {
-    std::map<std::string, std::string> taken;
-    const auto items = list(*l);
-    for (std::size_t i = 0; i < items.size(); ++i)
-      scene.forces.push_back(parseLoad(items[i], i, scene, taken));
-  }
-  if (const auto ms = top.get("masses")) {
-    std::map<std::string, std::string> taken;
-    const auto items = list(*ms);
-    for (std::size_t i = 0; i < items.size(); ++i)
-      scene.masses.push_back(parseMass(items[i], i, scene, taken));
-  }
+  parseSection(top, "constraints", "constraints", scene);
+  parseSection(top, "loads", "loads", scene);
+  parseSection(top, "masses", "masses", scene);
 
   // Analysis settings: a section that the chosen analysis would ignore is
   // an error, since the user evidently expected it to matter.
@@ -605,29 +594,7 @@ void SceneParser::parse(const Field &root, Scene &scene)
   else if (const auto m = top.get("modal"))
     scene.modal = parseModal(*m, false);
 
-  if (const auto sp = top.get("springs")) {
-    std::map<std::string, std::string> taken;
-    const auto items = list(*sp);
-    for (std::size_t i = 0; i < items.size(); ++i) {
-      const MapView m(report_, items[i],
-                      {"name", "body", "at", "other", "other_at", "point", "stiffness", "rest_length", "damping"});
-      SpringSpec spring;
-      spring.mark = report_.sourceMark(items[i]);
-      spring.name = itemName(m, taken, "spring", "spring" + std::to_string(i));
-      spring.a = point(m, scene);
-      if (m.has("other")) {
-        m.forbid("point", "not allowed together with 'other' (the spring joins two bodies)");
-        spring.b = point(m, scene, "other", "other_at");
-      } else {
-        m.forbid("other_at", "only allowed together with 'other'");
-        spring.ground = vec2(m.require("point"));
-      }
-      spring.stiffness = positive(m.require("stiffness"));
-      if (const auto l = m.get("rest_length")) spring.restLength = nonNegative(*l);
-      if (const auto c = m.get("damping")) spring.damping = nonNegative(*c);
-      scene.springs.push_back(spring);
-    }
-  }
+  parseSection(top, "springs", "springs", scene);
   if (const auto tr = top.get("tracking")) {
     if (scene.analysis != Scene::Analysis::Dynamic)
       report_.fail(*tr, "frequency tracking needs 'analysis: dynamic'");
@@ -638,7 +605,7 @@ void SceneParser::parse(const Field &root, Scene &scene)
       for (const Field &item : list(*sa)) scene.tracking.shapesAt.push_back(nonNegative(item));
   }
   if (const auto o = top.get("output"))
-    scene.output = parseOutput(*o, scene);
+    parseOutput(*o, scene);
 }
 
 BodySpec SceneParser::parseBody(const Field &f, std::map<std::string, std::string> &taken) const
@@ -716,157 +683,170 @@ SectionSpec SceneParser::parseSection(const Field &f, bool rigid) const
   return s;
 }
 
-ConstraintSpec SceneParser::parseConstraint(const Field &f, std::size_t index, const Scene &scene,
-                                            std::map<std::string, std::string> &taken) const
-{
-  const MapView m(report_, f,
-                  {"type", "name", "body", "at", "point", "angle", "other", "other_at", "track", "joint", "displacement",
-                   "from", "from_at", "pulley", "pulley_at", "to", "to_at", "length", "friction"});
-  const std::vector<std::string> types{"clamp", "pin", "angle_drive", "sliding_joint", "extraction_drive", "rope"};
-  const std::size_t type = choice(m.require("type", " (one of " + join(types) + ")"), types);
-  ConstraintSpec c;
-  const ConstraintSpec::Type kinds[] = {ConstraintSpec::Type::Clamp, ConstraintSpec::Type::Pin,
-                                        ConstraintSpec::Type::AngleDrive, ConstraintSpec::Type::SlidingJoint,
-                                        ConstraintSpec::Type::ExtractionDrive, ConstraintSpec::Type::Rope};
-  c.type = kinds[type];
-  c.mark = report_.sourceMark(f);
-  c.name = itemName(m, taken, "constraint", types[type] + std::to_string(index));
-  if (c.type != ConstraintSpec::Type::SlidingJoint) {
-    m.forbid("track", "only allowed for a sliding_joint");
-    m.forbid("friction", "only allowed for a sliding_joint");
-  }
-  if (c.type != ConstraintSpec::Type::ExtractionDrive) {
-    m.forbid("joint", "only allowed for an extraction_drive");
-    m.forbid("displacement", "only allowed for an extraction_drive");
-  }
+// --- components of registered physics types ------------------------------
 
-  if (c.type != ConstraintSpec::Type::Rope)
-    for (const char *key : {"from", "from_at", "pulley", "pulley_at", "to", "to_at", "length"})
-      m.forbid(key, "only allowed for a rope");
-  if (c.type == ConstraintSpec::Type::Rope) {
-    // Rope from a point over a pulley to a third point; taut at t = 0 unless a length is given.
-    for (const char *key : {"body", "at", "point", "angle", "other", "other_at"})
-      m.forbid(key, "not allowed for a rope (it names its points with from/from_at, pulley/pulley_at, to/to_at)");
-    c.a = point(m, scene, "from", "from_at");
-    c.b = point(m, scene, "pulley", "pulley_at");
-    c.c = point(m, scene, "to", "to_at");
-    if (const auto len = m.get("length")) c.length = positive(*len);
-    return c;
+namespace {
+
+// Sections whose items name their type with `type:`; the others hold one type.
+bool hasTypeKey(const std::string &section) { return section == "constraints" || section == "loads"; }
+
+// The noun in "duplicate <noun> name".
+std::string itemNoun(const std::string &section)
+{
+  if (section == "constraints") return "constraint";
+  if (section == "loads") return "load";
+  if (section == "masses") return "mass";
+  if (section == "springs") return "spring";
+  if (section == "output.sensors") return "sensor";
+  return "frame";
+}
+
+std::string withArticle(const std::string &word)
+{
+  return (std::string("aeiou").find(word.empty() ? 'x' : word[0]) != std::string::npos ? "an " : "a ") + word;
+}
+
+} // namespace
+
+void SceneParser::parseSection(const MapView &parent, const std::string &key, const std::string &section,
+                               Scene &scene) const
+{
+  const auto field = parent.get(key);
+  if (!field) return;
+  std::map<std::string, std::string> taken;
+  const auto items = list(*field);
+  for (std::size_t i = 0; i < items.size(); ++i) {
+    // Push before the next item is read: later items may refer to earlier ones.
+    ComponentSpec spec = parseComponent(items[i], i, section, scene, taken);
+    scene.components(section).push_back(std::move(spec));
   }
-  if (c.type == ConstraintSpec::Type::ExtractionDrive) {
-    // Drives the slack coordinate of a sliding joint: s(t) = s(0) + displacement(t).
-    for (const char *key : {"body", "at", "point", "angle", "other", "other_at"})
-      m.forbid(key, "not allowed for an extraction_drive (it names a sliding joint with 'joint')");
-    const Field joint = m.require("joint");
-    c.joint = name(joint);
+}
+
+ComponentSpec SceneParser::parseComponent(const Field &f, std::size_t index, const std::string &section,
+                                          const Scene &scene, std::map<std::string, std::string> &taken) const
+{
+  const std::vector<const PhysicsType *> types = physicsTypesOf(section);
+  // Every key of every type of the section is known here, so that a key of
+  // a sibling type gets "only allowed for ..." rather than "unknown key".
+  std::vector<std::string> allowed{"name"}, typeNames;
+  if (hasTypeKey(section)) allowed.insert(allowed.begin(), "type");
+  for (const PhysicsType *t : types) {
+    typeNames.push_back(t->schema.type);
+    for (const KeySchema &k : t->schema.keys)
+      if (std::find(allowed.begin(), allowed.end(), k.key) == allowed.end()) allowed.push_back(k.key);
+  }
+  const MapView m(report_, f, allowed);
+  const PhysicsType *type = types.at(0);
+  if (hasTypeKey(section))
+    type = types[choice(m.require("type", " (one of " + join(typeNames) + ")"), typeNames)];
+  ComponentSpec spec;
+  spec.type = type->schema.type;
+  spec.mark = report_.sourceMark(f);
+  spec.name = itemName(m, taken, itemNoun(section), type->schema.defaultName + std::to_string(index));
+  std::map<std::string, Field> fields;
+  readKeys(m, type->schema, types, section, scene, "", spec, fields);
+  if (type->complete) type->complete(spec, scene);
+  if (type->check)
+    if (const auto issue = type->check(spec, scene)) {
+      const auto it = fields.find(issue->key);
+      report_.fail(it == fields.end() ? f : it->second, issue->reason);
+    }
+  return spec;
+}
+
+// Keys of one map against its schema: first the keys that do not belong
+// here (so that the message names the real mistake), then the values in
+// schema order.
+void SceneParser::readKeys(const MapView &m, const TypeSchema &schema, const std::vector<const PhysicsType *> &siblings,
+                           const std::string &section, const Scene &scene, const std::string &prefix,
+                           ComponentSpec &spec, std::map<std::string, Field> &fields) const
+{
+  for (const PhysicsType *sibling : siblings)
+    for (const KeySchema &k : sibling->schema.keys) {
+      if (schema.find(k.key) || !m.has(k.key)) continue;
+      std::string reason;
+      for (const KeyRule &rule : schema.rules)
+        if (rule.key == k.key && rule.when == KeyRule::When::Always) reason = rule.reason;
+      if (reason.empty()) {
+        std::vector<std::string> owners;
+        for (const PhysicsType *t : siblings)
+          if (t->schema.find(k.key)) owners.push_back(withArticle(t->schema.type));
+        for (std::size_t i = 0; i < owners.size(); ++i) reason += (i ? " or " : "") + owners[i];
+        reason = "only allowed for " + reason;
+      }
+      m.forbid(k.key, reason);
+    }
+  for (const KeyRule &rule : schema.rules) {
+    const bool given = !rule.condition.empty() && m.has(rule.condition);
+    if ((rule.when == KeyRule::When::IfPresent && given) || (rule.when == KeyRule::When::IfAbsent && !given))
+      m.forbid(rule.key, rule.reason);
+  }
+  for (const KeySchema &k : schema.keys) {
+    const std::optional<Field> given = m.get(k.key);
+    if (!given) {
+      const bool needed = k.need == Need::Required || (k.need == Need::RequiredWith && m.has(k.other)) ||
+                          (k.need == Need::RequiredWithout && !m.has(k.other));
+      if (needed) m.require(k.key);
+      if (k.hasDefault) spec.set(k.key, k.defaultNumber);
+      continue;
+    }
+    readValue(*given, k, section, scene, prefix, spec, fields);
+  }
+}
+
+void SceneParser::readValue(const Field &f, const KeySchema &k, const std::string &section, const Scene &scene,
+                            const std::string &prefix, ComponentSpec &spec, std::map<std::string, Field> &fields) const
+{
+  fields.emplace(prefix + k.key, f);
+  switch (k.kind) {
+  case ValueKind::Number:
+    spec.set(k.key, k.limit == Limit::Positive ? positive(f) : k.limit == Limit::NonNegative ? nonNegative(f) : number(f));
+    return;
+  case ValueKind::Integer:
+    spec.set(k.key, static_cast<double>(integer(f, k.minInt, k.maxInt)));
+    return;
+  case ValueKind::Name:
+    spec.set(k.key, name(f));
+    return;
+  case ValueKind::Vec2:
+    spec.set(k.key, vec2(f));
+    return;
+  case ValueKind::TimeFunction:
+    spec.set(k.key, timeFunction(f));
+    return;
+  case ValueKind::AngleFunction:
+    spec.set(k.key, angleFunction(f));
+    return;
+  case ValueKind::Body: {
+    const std::string named = body(f, scene).name;
+    if (!k.differentFrom.empty() && spec.has(k.differentFrom) && spec.text(k.differentFrom) == named)
+      report_.fail(f, "must name another body than '" + k.differentFrom + "' ('" + named + "')");
+    spec.set(k.key, named);
+    return;
+  }
+  case ValueKind::MaterialCoordinate:
+    spec.set(k.key, materialCoordinate(f, bodyNamed(scene, spec.text(k.bodyKey))));
+    return;
+  case ValueKind::Component: {
+    const std::string named = name(f);
     bool found = false;
-    for (const ConstraintSpec &other : scene.constraints)
-      found = found || (other.type == ConstraintSpec::Type::SlidingJoint && other.name == c.joint);
-    if (!found)
-      report_.fail(joint, "names no sliding_joint listed before it ('" + c.joint + "')");
-    c.displacement = timeFunction(m.require("displacement"));
-    return c;
+    for (const ComponentSpec &other : scene.components(section))
+      found = found || (other.type == k.refType && other.name == named);
+    if (!found) report_.fail(f, "names no " + k.refType + " listed before it ('" + named + "')");
+    spec.set(k.key, named);
+    return;
   }
-  if (c.type == ConstraintSpec::Type::SlidingJoint) {
-    // The slider point (body, at) runs along the centerline of `track`.
-    for (const char *key : {"point", "angle", "other", "other_at"})
-      m.forbid(key, "not allowed for a sliding_joint (it names the slider point with body/at and the track with 'track')");
-    c.a = point(m, scene);
-    const Field track = m.require("track");
-    c.track = body(track, scene).name;
-    if (c.track == c.a.body)
-      report_.fail(track, "must name another body than 'body' ('" + c.a.body + "')");
-    if (const auto fr = m.get("friction")) c.friction = parseFriction(*fr);
-    return c;
+  case ValueKind::Map: {
+    std::vector<std::string> keys;
+    for (const KeySchema &nested : k.nested->keys) keys.push_back(nested.key);
+    const MapView m(report_, f, keys);
+    ComponentSpec nested(k.nested->type, spec.name + "." + k.key);
+    nested.mark = report_.sourceMark(f);
+    readKeys(m, *k.nested, {}, section, scene, prefix + k.key + ".", nested, fields);
+    spec.set(k.key, nested);
+    return;
   }
-
-  // Forbid the keys that do not belong to this type before reading the rest,
-  // so that the message names the real mistake.
-  const bool between_bodies = c.type == ConstraintSpec::Type::Pin && m.has("other");
-  switch (c.type) {
-  case ConstraintSpec::Type::Clamp:
-    for (const char *key : {"other", "other_at"})
-      m.forbid(key, "not allowed for a clamp (a clamp holds a body to the ground; join two bodies with a pin)");
-    break;
-  case ConstraintSpec::Type::Pin:
-    m.forbid("angle", "not allowed for a pin (a pin leaves the rotation free; use a clamp or an angle_drive)");
-    if (between_bodies)
-      m.forbid("point", "not allowed together with 'other' (the pin joins two bodies, not a body to the ground)");
-    else
-      m.forbid("other_at", "only allowed together with 'other'");
-    break;
-  case ConstraintSpec::Type::AngleDrive:
-    for (const char *key : {"point", "other", "other_at"})
-      m.forbid(key, "not allowed for an angle_drive (it prescribes only the direction of the body axis)");
-    break;
-  default:
-    break; // the other types are not read from scene files (yet)
   }
-
-  c.a = point(m, scene);
-  const BodySpec &a = bodyNamed(scene, c.a.body);
-  if (between_bodies) {
-    const Field other_field = m.require("other");
-    c.b = point(m, scene, "other", "other_at");
-    if (c.b->body == c.a.body)
-      report_.fail(other_field, "must name another body than 'body' ('" + c.a.body + "')");
-  }
-  if (c.type != ConstraintSpec::Type::AngleDrive && !between_bodies) {
-    // Default: the point stays where the material point starts.
-    if (const auto p = m.get("point"))
-      c.ground = vec2(*p);
-    else
-      c.ground = {a.origin[0] + c.a.s * std::cos(a.angle), a.origin[1] + c.a.s * std::sin(a.angle)};
-  }
-  if (c.type != ConstraintSpec::Type::Pin)
-    c.angle = m.has("angle") ? angleFunction(*m.get("angle")) : TimeFunction::constant(a.angle);
-  return c;
-}
-
-// LuGre parameters of a sliding joint (model.md §3); defaults in scene.hpp.
-FrictionSpec SceneParser::parseFriction(const Field &f) const
-{
-  const MapView m(report_, f, {"mu_s", "mu_c", "v_s", "alpha", "sigma0", "sigma1", "sigma2", "stick_velocity"});
-  FrictionSpec fr;
-  const Field mu_s = m.require("mu_s"), mu_c = m.require("mu_c");
-  fr.mu_s = positive(mu_s);
-  fr.mu_c = positive(mu_c);
-  if (fr.mu_c > fr.mu_s) report_.fail(mu_c, "must be <= mu_s (" + fmt(fr.mu_s) + "): kinetic friction above static");
-  if (const auto v = m.get("v_s")) fr.v_s = positive(*v);
-  if (const auto a = m.get("alpha")) fr.alpha = positive(*a);
-  if (const auto s0 = m.get("sigma0")) fr.sigma0 = positive(*s0);
-  if (const auto s1 = m.get("sigma1")) fr.sigma1 = nonNegative(*s1);
-  if (const auto s2 = m.get("sigma2")) fr.sigma2 = nonNegative(*s2);
-  fr.stick_velocity = fr.v_s / 10;
-  if (const auto sv = m.get("stick_velocity")) fr.stick_velocity = positive(*sv);
-  return fr;
-}
-
-PointForceSpec SceneParser::parseLoad(const Field &f, std::size_t index, const Scene &scene,
-                                      std::map<std::string, std::string> &taken) const
-{
-  const MapView m(report_, f, {"type", "name", "body", "at", "force", "scale"});
-  choice(m.require("type", " (point_force)"), {"point_force"});
-  PointForceSpec p;
-  p.mark = report_.sourceMark(f);
-  p.name = itemName(m, taken, "load", "force" + std::to_string(index));
-  p.at = point(m, scene);
-  p.force = vec2(m.require("force"));
-  if (const auto s = m.get("scale"))
-    p.scale = timeFunction(*s);
-  return p;
-}
-
-PointMassSpec SceneParser::parseMass(const Field &f, std::size_t index, const Scene &scene,
-                                     std::map<std::string, std::string> &taken) const
-{
-  const MapView m(report_, f, {"name", "body", "at", "mass"});
-  PointMassSpec p;
-  p.mark = report_.sourceMark(f);
-  p.name = itemName(m, taken, "mass", "mass" + std::to_string(index));
-  p.at = point(m, scene);
-  p.mass = positive(m.require("mass"));
-  return p;
 }
 
 DynamicSpec SceneParser::parseDynamic(const Field &f) const
@@ -923,44 +903,14 @@ ModalSpec SceneParser::parseModal(const Field &f, bool required_nonzero) const
   return s;
 }
 
-OutputSpec SceneParser::parseOutput(const Field &f, const Scene &scene) const
+void SceneParser::parseOutput(const Field &f, Scene &scene) const
 {
   const MapView m(report_, f, {"state_interval", "sensors", "frames"});
-  OutputSpec o;
+  OutputSpec &o = scene.output;
   if (const auto interval = m.get("state_interval"))
     o.state_interval = nonNegative(*interval);
-  if (const auto sensors = m.get("sensors")) {
-    std::map<std::string, std::string> taken;
-    const auto items = list(*sensors);
-    for (std::size_t i = 0; i < items.size(); ++i) {
-      const MapView s(report_, items[i], {"name", "body", "at"});
-      SensorSpec sensor;
-      sensor.name = itemName(s, taken, "sensor", "sensor" + std::to_string(i));
-      sensor.at = point(s, scene);
-      o.sensors.push_back(sensor);
-    }
-  }
-  if (const auto frames = m.get("frames")) {
-    std::map<std::string, std::string> taken;
-    const auto items = list(*frames);
-    for (std::size_t i = 0; i < items.size(); ++i) {
-      const MapView s(report_, items[i], {"name", "body", "at", "axis_joint"});
-      FrameSensorSpec frame;
-      frame.name = itemName(s, taken, "frame", "frame" + std::to_string(i));
-      frame.point = point(s, scene);
-      const Field joint = s.require("axis_joint");
-      frame.axisJoint = name(joint);
-      bool found = false;
-      for (const ConstraintSpec &c : scene.constraints)
-        found = found || (c.type == ConstraintSpec::Type::SlidingJoint && c.name == frame.axisJoint &&
-                          c.track == frame.point.body);
-      if (!found)
-        report_.fail(joint, "must name a sliding_joint whose track is '" + frame.point.body + "' (got '" +
-                              frame.axisJoint + "')");
-      o.frames.push_back(frame);
-    }
-  }
-  return o;
+  parseSection(m, "sensors", "output.sensors", scene);
+  parseSection(m, "frames", "output.frames", scene);
 }
 
 // Counts the documents of a YAML stream, at most three, through yaml-cpp's
