@@ -7,17 +7,18 @@
 #include <cmath>
 #include <stdexcept>
 
-#define BOOMDYN_PHYSICS_TYPES(X)                                                                                   \
-  X(clampType)                                                                                                     \
-  X(pinType)                                                                                                       \
-  X(angleDriveType)                                                                                                \
-  X(slidingJointType)                                                                                              \
-  X(extractionDriveType)                                                                                           \
-  X(ropeType)                                                                                                      \
-  X(pointForceType)                                                                                                \
-  X(pointMassType)                                                                                                 \
-  X(springType)                                                                                                    \
-  X(pointSensorType)                                                                                               \
+#define BOOMDYN_PHYSICS_TYPES(X) \
+  X(clampType) \
+  X(pinType) \
+  X(angleDriveType) \
+  X(slidingJointType) \
+  X(extractionDriveType) \
+  X(ropeType) \
+  X(distanceType) \
+  X(pointForceType) \
+  X(pointMassType) \
+  X(springType) \
+  X(pointSensorType) \
   X(frameSensorType)
 
 namespace boomdyn {

@@ -305,6 +305,50 @@ constraints:
   EXPECT_NEAR(c.function("angle").value(0), 30 * kDeg, 1e-15);
 }
 
+TEST(SceneReader, DistanceConstraintBetweenBodiesAndToGround)
+{
+  const std::string bodies = std::string(kMinimal) + R"(  - name: jib
+    length: 1
+    elements: 2
+    origin: [2, 0]
+    section: {EA: 1, EI: 1, rhoA: 1}
+constraints:
+)";
+  const Scene s = parseScene(bodies + R"(  - {type: distance, name: stay, body: boom, at: 1, other: jib, other_at: end}
+  - {type: distance, body: jib, at: 0.5, point: [2, 3], length: 3.2}
+)",
+                             "t.yaml");
+  ASSERT_EQ(s.constraints.size(), 2u);
+  const ComponentSpec &stay = s.constraints[0];
+  EXPECT_EQ(stay.type, "distance");
+  EXPECT_EQ(stay.name, "stay");
+  EXPECT_EQ(stay.text("body"), "boom");
+  EXPECT_EQ(stay.number("at"), 1.0);
+  EXPECT_EQ(stay.text("other"), "jib");
+  EXPECT_EQ(stay.number("other_at"), 1.0); // `end` of the 1 m jib
+  EXPECT_FALSE(stay.has("length"));         // the builder takes the initial distance
+  const ComponentSpec &ground = s.constraints[1];
+  EXPECT_EQ(ground.name, "distance1");
+  EXPECT_EQ(ground.vec2("point"), (Vec2d{2, 3}));
+  EXPECT_EQ(ground.number("length"), 3.2);
+
+  // The schema's rules, with the file:line: key messages of every type.
+  expectRejected(bodies + "  - {type: distance, body: boom, at: 1, other: jib, other_at: 0, point: [0, 0]}\n", 14,
+                 "constraints[0].point", "not allowed together with 'other' (the link joins two bodies)");
+  expectRejected(bodies + "  - {type: distance, body: boom, at: 1}\n", 14, "constraints[0].point",
+                 "missing required key");
+  expectRejected(bodies + "  - {type: distance, body: boom, at: 1, point: [0, 0], other_at: 0}\n", 14,
+                 "constraints[0].other_at", "only allowed together with 'other'");
+  expectRejected(bodies + "  - {type: distance, body: boom, at: 1, point: [0, 0], length: 0}\n", 14,
+                 "constraints[0].length", "must be > 0 (got 0)");
+  expectRejected(bodies + "  - {type: distance, body: boom, at: 1, point: [0, 0], angle: 3}\n", 14,
+                 "constraints[0].angle", "not allowed for a distance");
+  expectRejected(bodies + "  - {type: distance, body: boom, at: 1, point: [0, 0], track: jib}\n", 14,
+                 "constraints[0].track", "only allowed for a sliding_joint");
+  expectRejected(bodies + "  - {type: pin, body: boom, at: 1, length: 2}\n", 14, "constraints[0].length",
+                 "only allowed for a rope or a distance");
+}
+
 TEST(SceneReader, DynamicDefaultsAndDtMinFollowsSmallDt)
 {
   const std::string base = R"(name: d
