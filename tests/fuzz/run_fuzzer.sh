@@ -5,7 +5,8 @@
 #
 # (a) builds BUILD_DIR/fuzz/scene_fuzzer with clang++ -fsanitize=fuzzer,address,undefined
 #     from the reader's own sources and the physics types whose schemas it reads
-#     (scene_reader.cpp, the registry, src/*/*_type.cpp, time_function.cpp), all
+#     (src/io/{scene_reader,checked_yaml,component_reader}.cpp, the registry, every
+#     file that defines a PhysicsType, time_function.cpp), all
 #     instrumented; the types' builders need the kernels, which come uninstrumented
 #     from BUILD_DIR/libboomdyn_core.a (build it first) with PETSc and MPI linked
 #     but never initialized: the reader does not call a builder. Rebuilt when
@@ -38,16 +39,19 @@ exe=$dir/scene_fuzzer
 mkdir -p "$dir/corpus" "$dir/artifacts"
 
 # (a) build if any dependency is newer than the executable
-reader_sources=("$src/src/io/scene_reader.cpp" "$src/src/model/time_function.cpp" "$src/src/model/scene.cpp"
-                "$src/src/model/component_spec.cpp" "$src/src/model/physics_types.cpp"
-                "$src/src"/*/*_type.cpp)
+reader_sources=("$src/src/io/scene_reader.cpp" "$src/src/io/checked_yaml.cpp" "$src/src/io/component_reader.cpp"
+                "$src/src/model/time_function.cpp" "$src/src/model/scene.cpp"
+                "$src/src/model/component_spec.cpp" "$src/src/model/physics_types.cpp")
+# Every file that defines a physics type (its schema is what the reader reads).
+mapfile -t type_sources < <(grep -l '^PhysicsType [A-Za-z]*Type()' "$src/src"/*/*.cpp)
+reader_sources+=("${type_sources[@]}")
 core=$build/libboomdyn_core.a
 if [ ! -f "$core" ]; then
   echo "fuzz: $core not found: build the boomdyn_core target first"
   exit 1
 fi
 deps=("$src/tests/fuzz/scene_fuzzer.cpp" "$src/tests/fuzz/run_fuzzer.sh" "${reader_sources[@]}" "$core"
-      "$src/include/boomdyn"/*.hpp)
+      "$src/include/boomdyn"/*.hpp "$src/src/io/checked_yaml.hpp")
 stale=0
 [ -x "$exe" ] || stale=1
 for d in "${deps[@]}"; do [ "$d" -nt "$exe" ] && stale=1; done
