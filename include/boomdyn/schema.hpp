@@ -1,7 +1,7 @@
 // The scene schema of a physics type as plain data: which keys a component
 // of the type takes, what kind of value each holds, its unit, limits,
 // default and help text. The type file (src/constraints/pin_type.cpp, ...)
-// writes it; the io layer interprets it (io/scene_reader.cpp checks the
+// writes it; the io layer interprets it (io/component_reader.cpp checks the
 // YAML against it, io/schema_markdown.cpp prints docs/scenes.md's tables).
 // Nothing here knows YAML, so physics types do not depend on io.
 #pragma once

@@ -41,7 +41,7 @@ int main(int argc, char **argv)
     return 0;
   }
   if (fresh == text.str()) return 0;
-  std::cerr << path << ": the generated tables differ from the registered schemas (src/*/*_type.cpp); regenerate with\n"
+  std::cerr << path << ": the generated tables differ from the registered schemas (src/model/physics_types.cpp); regenerate with\n"
             << "  " << argv[0] << " --write " << path << "\n";
   return 1;
 }
