@@ -1,15 +1,14 @@
 // A scene as validated plain data: what the scene file says, in SI units
 // (angles in radians). Bodies and analysis settings have fixed fields; the
 // other components (constraints, loads, masses, springs, sensors) are
-// ComponentSpecs of registered physics types (physics_type.hpp). The reader (io/scene_reader)
-// fills it and rejects bad input; the Model is built from it. Nothing
-// downstream reads the YAML text again, except to store it in the output.
+// ComponentSpecs of registered physics types (physics_type.hpp). The reader
+// (io/scene_reader) fills it and rejects bad input; the Model is built from
+// it. Nothing downstream reads the YAML text again, except to store it in
+// the output.
 #pragma once
 
 #include "boomdyn/component_spec.hpp"
 
-#include <array>
-#include <optional>
 #include <string>
 #include <vector>
 
