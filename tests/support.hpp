@@ -154,8 +154,8 @@ inline Scene shortenedExtraction(double seconds)
 {
   Scene scene = readSceneFile(std::string(BOOMDYN_SOURCE_DIR) + "/inputs/paper_extraction.yaml");
   for (auto &c : scene.constraints)
-    if (c.type == ConstraintSpec::Type::ExtractionDrive)
-      c.displacement = TimeFunction::smoothStep(0.0, seconds, 0.0, seconds);
+    if (c.type == "extraction_drive")
+      c.set("displacement", TimeFunction::smoothStep(0.0, seconds, 0.0, seconds));
   scene.dynamic.t_end = seconds;
   return scene;
 }

@@ -15,7 +15,6 @@
 // (its row is the identity).
 #pragma once
 
-#include "boomdyn/scene.hpp"
 #include "boomdyn/sliding_joint.hpp"
 #include "boomdyn/work_item.hpp"
 
@@ -23,6 +22,20 @@
 #include <memory>
 
 namespace boomdyn {
+
+// LuGre friction parameters (model.md §3): F_t = (sigma0 z + sigma1 zdot)
+// |lambda_n| + sigma2 v_r with zdot = v_r - sigma0 |v_r| z / g(v_r),
+// g(v) = mu_c + (mu_s - mu_c) exp(-|v / v_s|^alpha). The scene schema and
+// its defaults are in src/constraints/sliding_joint_type.cpp.
+struct FrictionSpec {
+  double mu_s = 0.15, mu_c = 0.1; // static and kinetic coefficients
+  double v_s = 1e-3;              // Stribeck velocity, m/s
+  double alpha = 2.0;             // Stribeck exponent
+  double sigma0 = 1e5;            // bristle stiffness per unit normal force, 1/m
+  double sigma1 = 0.0;            // bristle damping per unit normal force, s/m
+  double sigma2 = 0.0;            // viscous friction, N s/m
+  double stick_velocity = -1;     // |v_r| below it counts as stick in the output, m/s (< 0: v_s / 10)
+};
 
 class LuGreFriction : public WorkItem {
 public:

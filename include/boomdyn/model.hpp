@@ -6,6 +6,8 @@
 
 #include "boomdyn/body.hpp"
 #include "boomdyn/constraint_item.hpp"
+#include "boomdyn/output_channel.hpp"
+#include "boomdyn/post_step_hook.hpp"
 #include "boomdyn/scene.hpp"
 #include "boomdyn/sliding_joint.hpp"
 #include "boomdyn/work_item.hpp"
@@ -28,6 +30,19 @@ struct Sensor {
   double s = 0;
 };
 
+// Deflection of a material point in a body's moving frame (paper Fig. 9):
+// origin at the body's start (s = 0), x-axis through the contact point of
+// sliding joint `axisJoint` on that body; the output is the point's
+// coordinate normal to the axis (m).
+struct FrameSensor {
+  std::string name;
+  const Body *body = nullptr;
+  double s = 0;
+  std::string axisJoint; // a sliding joint whose track is `body`
+};
+
+class LuGreFriction;
+
 class Model {
 public:
   // Throws ModelError (message names the scene file, line and key) when the
@@ -44,6 +59,11 @@ public:
   const std::vector<std::unique_ptr<WorkItem>> &items() const { return items_; }
   const std::vector<const ConstraintItem *> &constraints() const { return constraints_; }
   const std::vector<Sensor> &sensors() const { return sensors_; }
+  const std::vector<FrameSensor> &frameSensors() const { return frameSensors_; }
+  // Per-type outputs (rope tensions, ...), in the order the types added them.
+  const std::vector<OutputChannel> &outputChannels() const { return outputChannels_; }
+  // Work after each converged step (sliding joints follow their tracks).
+  const std::vector<PostStepHook> &postStepHooks() const { return postStepHooks_; }
   // Sliding joints, mutable through a const Model: which track element holds
   // the contact point is topology state that follows the solution.
   const std::vector<std::shared_ptr<SlidingJoint>> &slidingJoints() const { return slidingJoints_; }
@@ -51,7 +71,7 @@ public:
   const std::vector<PetscInt> &firstOrderCoordinates() const { return firstOrder_; }
   const std::vector<std::string> &frictionJointNames() const { return frictionJoints_; }
   // The friction elements, in the order of frictionJointNames().
-  const std::vector<const class LuGreFriction *> &frictions() const { return frictions_; }
+  const std::vector<const LuGreFriction *> &frictions() const { return frictions_; }
   const Scene &scene() const { return scene_; }
   // Initial coordinates (undeformed bodies as placed in the scene), size nq.
   std::vector<double> initialCoordinates() const;
@@ -75,7 +95,7 @@ public:
   std::vector<std::string> conditioningWarnings() const;
 
 private:
-  void addConstraint(std::shared_ptr<Constraint> c, const SourceMark &mark);
+  friend class ModelBuilder; // the physics types build the Model through it
   void checkInitialConfiguration() const;
 
   Scene scene_;
@@ -85,11 +105,14 @@ private:
   std::vector<const ConstraintItem *> constraints_;
   std::vector<SourceMark> constraintMarks_;
   std::vector<Sensor> sensors_;
+  std::vector<FrameSensor> frameSensors_;
+  std::vector<OutputChannel> outputChannels_;
+  std::vector<PostStepHook> postStepHooks_;
   std::vector<std::shared_ptr<SlidingJoint>> slidingJoints_;
   std::vector<std::pair<PetscInt, double>> slackInitial_; // (slack coordinate, initial s)
   std::vector<PetscInt> firstOrder_;
   std::vector<std::string> frictionJoints_;
-  std::vector<const class LuGreFriction *> frictions_;
+  std::vector<const LuGreFriction *> frictions_;
 };
 
 } // namespace boomdyn

@@ -1,26 +1,18 @@
 // A scene as validated plain data: what the scene file says, in SI units
-// (angles in radians), with nothing derived. The reader (io/scene_reader)
-// fills it and rejects bad input; the Model is built from it. Nothing
-// downstream reads the YAML text again, except to store it in the output.
+// (angles in radians). Bodies and analysis settings have fixed fields; the
+// other components (constraints, loads, masses, springs, sensors) are
+// ComponentSpecs of registered physics types (physics_type.hpp). The reader
+// (io/scene_reader) fills it and rejects bad input; the Model is built from
+// it. Nothing downstream reads the YAML text again, except to store it in
+// the output.
 #pragma once
 
-#include "boomdyn/time_function.hpp"
+#include "boomdyn/component_spec.hpp"
 
-#include <array>
-#include <optional>
 #include <string>
 #include <vector>
 
 namespace boomdyn {
-
-using Vec2d = std::array<double, 2>;
-
-// Where a value came from, for messages raised after parsing.
-struct SourceMark {
-  std::string file;
-  int line = 0; // 1-based, 0 = unknown
-  std::string key;
-};
 
 struct SectionSpec {
   double EA = 0;   // axial stiffness, N
@@ -38,93 +30,6 @@ struct BodySpec {
   double angle = 0;   // initial direction of the axis, rad (counter-clockwise from x)
   SectionSpec section;
   SourceMark mark;
-};
-
-// A material point: body name and material coordinate s in [0, length].
-struct PointRef {
-  std::string body;
-  double s = 0;
-};
-
-// LuGre friction at a sliding joint (model.md §3): F_t = (sigma0 z + sigma1
-// zdot) |lambda_n| + sigma2 v_r with zdot = v_r - sigma0 |v_r| z / g(v_r),
-// g(v) = mu_c + (mu_s - mu_c) exp(-|v / v_s|^alpha).
-struct FrictionSpec {
-  double mu_s = 0.15, mu_c = 0.1; // static and kinetic coefficients
-  double v_s = 1e-3;              // Stribeck velocity, m/s
-  double alpha = 2.0;             // Stribeck exponent
-  double sigma0 = 1e5;            // bristle stiffness per unit normal force, 1/m
-  double sigma1 = 0.0;            // bristle damping per unit normal force, s/m
-  double sigma2 = 0.0;            // viscous friction, N s/m
-  double stick_velocity = -1;     // |v_r| below it counts as stick in the output, m/s (< 0: v_s / 10)
-};
-
-struct ConstraintSpec {
-  // pin:         r_a(s_a) = ground point, or r_a(s_a) = r_b(s_b)
-  // angle_drive: the tangent of body a at s_a points along theta(t)
-  // clamp:       pin to ground + angle_drive (expanded by the Model)
-  // sliding_joint: the point a (slider body, x_P) moves along the centerline
-  //               of body `track`; its contact coordinate is an unknown
-  // extraction_drive: the slack coordinate of sliding joint `joint` follows
-  //               s(t) = s(0) + displacement(t)
-  // rope:        L - |r_from - r_pulley| - |r_pulley - r_to| = 0 (points a, b, c)
-  enum class Type { Pin, AngleDrive, Clamp, SlidingJoint, ExtractionDrive, Rope };
-  Type type = Type::Pin;
-  std::string name;
-  PointRef a;
-  std::optional<PointRef> b; // pin between bodies (absent: to ground); rope: the pulley
-  std::optional<PointRef> c; // rope: the far end
-  double length = 0;         // rope length, m; 0: the initial spanned length
-  Vec2d ground{0, 0};        // ground point, m (pin/clamp to ground)
-  TimeFunction angle;        // rad (angle_drive/clamp)
-  std::string track;         // sliding_joint: the body the slider runs along
-  std::string joint;         // extraction_drive: the sliding joint whose slack coordinate it drives
-  TimeFunction displacement; // extraction_drive: d(t), m
-  std::optional<FrictionSpec> friction; // sliding_joint: LuGre friction (absent: frictionless)
-  SourceMark mark;
-};
-
-struct PointForceSpec {
-  std::string name;
-  PointRef at;
-  Vec2d force{0, 0};  // N, global frame, multiplied by scale(t)
-  TimeFunction scale = TimeFunction::constant(1.0);
-  SourceMark mark;
-};
-
-struct PointMassSpec {
-  std::string name;
-  PointRef at;
-  double mass = 0; // kg
-  SourceMark mark;
-};
-
-// Linear spring-damper from a material point to another body's point or to
-// a ground point.
-struct SpringSpec {
-  std::string name;
-  PointRef a;
-  std::optional<PointRef> b; // absent: to the ground point
-  Vec2d ground{0, 0};
-  double stiffness = 0;      // N/m
-  double restLength = -1;    // m; < 0: the initial distance
-  double damping = 0;        // N s/m
-  SourceMark mark;
-};
-
-struct SensorSpec {
-  std::string name;
-  PointRef at;
-};
-
-// Deflection of a material point in a body's moving frame (paper Fig. 9):
-// origin at the body's start (s = 0), x-axis through the contact point of
-// sliding joint `axisJoint` on that body; the output is the point's
-// coordinate normal to the axis (m).
-struct FrameSensorSpec {
-  std::string name;
-  PointRef point;        // body and the material point whose deflection is measured
-  std::string axisJoint; // sliding joint that has `point.body` as its track
 };
 
 struct DynamicSpec {
@@ -156,8 +61,8 @@ struct TrackingSpec {
 
 struct OutputSpec {
   double state_interval = 0; // s; 0: full state at the first and last step only
-  std::vector<SensorSpec> sensors;
-  std::vector<FrameSensorSpec> frames;
+  std::vector<ComponentSpec> sensors; // section output.sensors
+  std::vector<ComponentSpec> frames;  // section output.frames
 };
 
 struct Scene {
@@ -169,17 +74,22 @@ struct Scene {
   Analysis analysis = Analysis::Dynamic;
   Vec2d gravity{0, 0}; // m/s^2
   std::vector<BodySpec> bodies;
-  std::vector<ConstraintSpec> constraints;
-  std::vector<PointForceSpec> forces;
-  std::vector<PointMassSpec> masses;
-  std::vector<SpringSpec> springs;
+  // Components of the registered physics types (physics_type.hpp), by
+  // section, in file order.
+  std::vector<ComponentSpec> constraints; // section constraints
+  std::vector<ComponentSpec> forces;      // section loads
+  std::vector<ComponentSpec> masses;      // section masses
+  std::vector<ComponentSpec> springs;     // section springs
   DynamicSpec dynamic;
   StaticSpec statics;
   ModalSpec modal;
   TrackingSpec tracking;
   OutputSpec output;
 
-  const BodySpec *findBody(const std::string &name) const;
+  // The sections that hold components, in the order the Model builds them.
+  static const std::vector<std::string> &componentSections();
+  std::vector<ComponentSpec> &components(const std::string &section);
+  const std::vector<ComponentSpec> &components(const std::string &section) const;
 };
 
 } // namespace boomdyn

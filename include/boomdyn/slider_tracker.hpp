@@ -1,8 +1,9 @@
-// Follows the slack coordinates of the sliding joints: after a converged
-// Newton solve it brings every joint's s to every rank, moves joints whose
-// contact point has left its track element to the element that holds it
-// (and then rebuilds the assembly pattern), and reports a slider that has
-// left its track altogether.
+// Runs the post-step hooks that types registered (Model::postStepHooks(),
+// post_step_hook.hpp): after a converged Newton solve it brings every
+// watched value to every rank and hands it to the hooks. Today the sliding
+// joints register one each: a joint whose contact point has left its track
+// element moves to the element that holds it (the tracker then rebuilds the
+// assembly pattern), and a slider that has left its track stops the run.
 #pragma once
 
 #include "boomdyn/assembler.hpp"
@@ -28,20 +29,21 @@ public:
   SliderTracker &operator=(const SliderTracker &) = delete;
 
   PetscErrorCode setUp(Vec layout);
-  // relocated: some joint changed element (pattern rebuilt: redo the solve);
-  // offTrack: non-empty message if a slider left its track.
+  // relocated: some hook changed the topology (pattern rebuilt: redo the
+  // solve); offTrack: non-empty message if a hook stops the run (a slider
+  // left its track).
   PetscErrorCode update(Vec x, double t, bool *relocated, std::string *offTrack);
-  // Material coordinates that define each joint's current track element
-  // (for checkpoints), and the inverse: put the joints back on those elements
+  // Each hook's checkpointed state (for sliding joints: the material
+  // coordinate that defines the current track element), and the inverse
   // (collective: rebuilds the pattern).
   std::vector<double> locations() const;
   PetscErrorCode setLocations(const std::vector<double> &s);
-  bool active() const { return !assembler_.model().slidingJoints().empty(); }
+  bool active() const { return !assembler_.model().postStepHooks().empty(); }
 
 private:
   Assembler &assembler_;
   VecScatter scatter_ = nullptr;
-  Vec slacks_ = nullptr;
+  Vec slacks_ = nullptr; // the watched values of all hooks, in hook order
 };
 
 } // namespace boomdyn

@@ -98,12 +98,12 @@ PetscErrorCode SensorProbe::setUp(Vec layout)
   PetscCall(scatterToRankZero(layout, rank_, rows, &lambdaScatter_, &multipliers_));
   // Frame sensors: the whole body (the axis point moves along it) and the joint's slack coordinate.
   std::vector<PetscInt> frameIdx;
-  for (const FrameSensorSpec &f : model_.scene().output.frames) {
-    const Body *body = model_.findBody(f.point.body);
+  for (const FrameSensor &f : model_.frameSensors()) {
+    const Body *body = f.body;
     PetscInt slack = -1;
     for (const auto &j : model_.slidingJoints())
       if (j->name() == f.axisJoint) slack = j->slackIndex();
-    frames_.push_back({body, f.point.s, static_cast<PetscInt>(frameIdx.size())});
+    frames_.push_back({body, f.s, static_cast<PetscInt>(frameIdx.size())});
     for (PetscInt k = 0; k < body->numCoordinates(); ++k) frameIdx.push_back(body->firstCoordinate() + k);
     frameIdx.push_back(slack);
   }

@@ -12,7 +12,6 @@
 #include "boomdyn/generalized_alpha.hpp"
 #include "boomdyn/model.hpp"
 #include "boomdyn/results_writer.hpp"
-#include "boomdyn/rope.hpp"
 #include "boomdyn/sensors.hpp"
 #include "boomdyn/slider_tracker.hpp"
 #include "boomdyn/static_solver.hpp"
@@ -115,20 +114,20 @@ PetscErrorCode runScene(const Scene &scene, const AppOptions &opts, int argc, ch
   PetscCall(sensors.setUp(x));
   std::vector<SensorReading> readings;
   std::vector<double> slacks, multipliers, tensions, deflections;
-  // Rope tensions are minus the multipliers of the rope rows (C = L - l1 - l2).
-  std::vector<std::pair<std::string, PetscInt>> ropeRows;
-  for (const ConstraintItem *c : model.constraints())
-    if (dynamic_cast<const Rope *>(&c->constraint())) ropeRows.push_back({c->name(), c->firstRow() - model.numCoordinates()});
+  // Rope tensions: the output channels of group "rope" (factor * multiplier, rope_type.cpp).
+  std::vector<OutputChannel> ropeRows;
+  for (const OutputChannel &ch : model.outputChannels())
+    if (ch.group == "rope") ropeRows.push_back(ch);
   PetscInt slackRopeSteps = 0;
   auto recordJoints = [&](double t) -> PetscErrorCode {
     PetscFunctionBeginUser;
     tensions.clear();
     bool slack = false;
     std::string which;
-    for (const auto &[name, row] : ropeRows)
+    for (const OutputChannel &rope : ropeRows)
       if (!multipliers.empty()) {
-        tensions.push_back(-multipliers[row]);
-        if (tensions.back() < 0 && !slack) slack = true, which = name;
+        tensions.push_back(rope.factor * multipliers[rope.index]);
+        if (tensions.back() < 0 && !slack) slack = true, which = rope.name;
       }
     PetscCall(out.appendJoints(slacks, multipliers, tensions, deflections));
     int flag = slack;

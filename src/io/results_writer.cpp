@@ -3,7 +3,6 @@
 #include "boomdyn/gather.hpp"
 
 #include "boomdyn/log_events.hpp"
-#include "boomdyn/rope.hpp"
 #include "boomdyn/ancf_beam.hpp"
 
 #include <algorithm>
@@ -96,13 +95,13 @@ PetscErrorCode ResultsWriter::open(const std::string &path, bool overwrite, cons
       for (const auto &j : model_.slidingJoints()) joints.push_back(j->name());
       if (!joints.empty()) file_->writeStrings("/layout/sliding_joint_names", joints);
       std::vector<std::string> ropes;
-      for (const ConstraintItem *c : model_.constraints())
-        if (dynamic_cast<const Rope *>(&c->constraint())) ropes.push_back(c->name());
+      for (const OutputChannel &ch : model_.outputChannels())
+        if (ch.group == "rope") ropes.push_back(ch.name);
       if (!ropes.empty()) file_->writeStrings("/layout/rope_names", ropes);
       if (!model_.frictionJointNames().empty())
         file_->writeStrings("/layout/friction_joint_names", model_.frictionJointNames());
       std::vector<std::string> frames;
-      for (const FrameSensorSpec &f : sc.output.frames) frames.push_back(f.name);
+      for (const FrameSensor &f : model_.frameSensors()) frames.push_back(f.name);
       if (!frames.empty()) file_->writeStrings("/layout/frame_names", frames);
       if (!cnames.empty()) {
         file_->writeStrings("/layout/constraint_names", cnames);

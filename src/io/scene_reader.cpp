@@ -1,15 +1,15 @@
 // Scene file reader: YAML text -> validated Scene (format: docs/scenes.md).
 //
 // Design: yaml-cpp only builds the node tree. Every value is then pulled out
-// through a few checked accessors (MapView, number, integer, ...) that know
-// the value's key path and source position, so any rejection can say
+// through the checked accessors of checked_yaml.hpp, which know the value's
+// key path and source position, so any rejection can say
 // "<file>:<line>:<column>: key '<path>': <reason>". The reader stops at the
-// first error: later errors are often consequences of the first one.
-//
-// Nothing here uses yaml-cpp's as<T>(): its conversions accept things we do
-// not want (".nan", quoted numbers, overflow to inf) and throw exceptions
-// without our key path. Scalars are converted by hand instead.
+// first error: later errors are often consequences of the first one. This
+// file reads the document, the top level, bodies and analysis settings; the
+// components of physics types are read by component_reader.cpp.
 #include "boomdyn/scene_reader.hpp"
+
+#include "checked_yaml.hpp"
 
 #include <yaml-cpp/eventhandler.h>
 #include <yaml-cpp/yaml.h>
@@ -28,517 +28,28 @@ namespace boomdyn {
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846264338327950288;
-constexpr double kRadPerDeg = kPi / 180.0;
-constexpr int kMaxElements = 10000000; // beyond this the Jacobian alone is many GB
-constexpr int kMaxModes = 1000;
-constexpr int kMaxLoadSteps = 1000000;
-constexpr int kMaxNewton = 1000;
-const char *const kTopLevel = "(top level)"; // path shown for the document itself
-
-std::string join(const std::vector<std::string> &items)
-{
-  std::string out;
-  for (const auto &item : items)
-    out += (out.empty() ? "" : ", ") + item;
-  return out;
-}
-
-std::string fmt(double x)
-{
-  std::ostringstream out;
-  out.precision(10);
-  out << x;
-  return out.str();
-}
-
-// Edit distance, for "did you mean" hints on misspelt keys.
-std::size_t editDistance(const std::string &a, const std::string &b)
-{
-  std::vector<std::size_t> row(b.size() + 1);
-  for (std::size_t j = 0; j <= b.size(); ++j)
-    row[j] = j;
-  for (std::size_t i = 1; i <= a.size(); ++i) {
-    std::size_t diagonal = row[0];
-    row[0] = i;
-    for (std::size_t j = 1; j <= b.size(); ++j) {
-      const std::size_t above = row[j];
-      const bool same = std::tolower(static_cast<unsigned char>(a[i - 1])) ==
-                        std::tolower(static_cast<unsigned char>(b[j - 1]));
-      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (same ? 0 : 1)});
-      diagonal = above;
-    }
-  }
-  return row[b.size()];
-}
-
-// A short description of what a node holds, for "expected X, got Y".
-std::string describeNode(const YAML::Node &node)
-{
-  switch (node.Type()) {
-  case YAML::NodeType::Null:
-  case YAML::NodeType::Undefined:
-    return "nothing";
-  case YAML::NodeType::Sequence:
-    return "a list";
-  case YAML::NodeType::Map:
-    return "a map";
-  case YAML::NodeType::Scalar:
-    break;
-  }
-  std::string text = node.Scalar();
-  if (text.size() > 40)
-    text = text.substr(0, 37) + "...";
-  return (node.Tag() == "!" ? "the quoted string '" : "'") + text + "'";
-}
-
-enum class NumberText { Ok, NotANumber, NotFinite, OutOfRange };
-
-// Parses a YAML plain scalar as a finite double. Locale-independent
-// (from_chars); YAML's .nan/.inf spellings and C's nan/inf are all refused,
-// as are values that overflow a double (1e999).
-NumberText parseNumber(const std::string &text, double &value)
-{
-  // [+-][.](nan|inf|infinity), any case: YAML's and C's spellings.
-  std::string word = text;
-  std::transform(word.begin(), word.end(), word.begin(), [](unsigned char c) { return std::tolower(c); });
-  word.erase(0, word.find_first_not_of("+-"));
-  word.erase(0, word.find_first_not_of('.'));
-  if (word == "nan" || word == "inf" || word == "infinity")
-    return NumberText::NotFinite;
-  const char *begin = text.data();
-  const char *end = text.data() + text.size();
-  if (begin != end && *begin == '+') // YAML allows an explicit plus sign
-    ++begin;
-  const auto [stop, error] = std::from_chars(begin, end, value);
-  if (error == std::errc::result_out_of_range)
-    return NumberText::OutOfRange;
-  if (error != std::errc() || stop != end || begin == end)
-    return NumberText::NotANumber;
-  return std::isfinite(value) ? NumberText::Ok : NumberText::NotFinite;
-}
-
-// A value in the document: the node, its key path for messages, the
-// position to report for errors in the value, and the position of its key
-// (or list item), reported for keys missing inside it: "dynamic:" is where
-// a reader looks for the dynamic section, not the first key below it.
-struct Field {
-  YAML::Node node;
-  std::string path;
-  YAML::Mark mark;
-  YAML::Mark key_mark;
-};
-
-std::string childPath(const std::string &parent, const std::string &key)
-{
-  return parent.empty() ? key : parent + "." + key;
-}
-
-// Error reporting for one file.
-class Reporter {
-public:
-  explicit Reporter(std::string file) : file_(std::move(file)) {}
-
-  [[noreturn]] void fail(const YAML::Mark &mark, const std::string &path, const std::string &reason) const
-  {
-    // yaml-cpp marks are 0-based, and -1 when unknown.
-    const int line = std::max(mark.line, 0) + 1;
-    const int column = std::max(mark.column, 0) + 1;
-    throw SceneError(file_ + ":" + std::to_string(line) + ":" + std::to_string(column) + ": key '" +
-                     (path.empty() ? kTopLevel : path) + "': " + reason);
-  }
-  [[noreturn]] void fail(const Field &field, const std::string &reason) const
-  {
-    fail(field.mark, field.path, reason);
-  }
-
-  SourceMark sourceMark(const Field &field) const
-  {
-    return SourceMark{file_, std::max(field.mark.line, 0) + 1, field.path};
-  }
-
-private:
-  std::string file_;
-};
-
-// The entries of a YAML map, checked once for unknown, duplicate and
-// non-string keys. An empty value (null) counts as an empty map, so that
-// "output:" with everything commented out below means "all defaults".
-class MapView {
-public:
-  MapView(const Reporter &report, const Field &field, const std::vector<std::string> &allowed)
-    : report_(report), self_(field)
-  {
-    if (!field.node.IsMap() && !field.node.IsNull())
-      report.fail(field, "expected a map of keys (" + join(allowed) + "), got " + describeNode(field.node));
-    if (field.node.IsNull())
-      return;
-    for (auto it = field.node.begin(); it != field.node.end(); ++it) {
-      // Copies, not references: the iterator hands out a temporary pair.
-      const YAML::Node key = it->first;
-      const YAML::Node value = it->second;
-      if (!key.IsScalar())
-        report.fail(key.Mark(), field.path, "keys must be plain names, got " + describeNode(key) + " as a key");
-      const std::string name = key.Scalar();
-      const std::string path = childPath(field.path, name);
-      if (std::find(allowed.begin(), allowed.end(), name) == allowed.end())
-        report.fail(key.Mark(), path, unknownKeyReason(name, allowed));
-      if (entries_.count(name))
-        report.fail(key.Mark(), path,
-                    "duplicate key (first given on line " + std::to_string(entries_.at(name).key_mark.line + 1) +
-                        ")");
-      // An empty value has no position of its own (yaml-cpp reports the
-      // next token), so point at its key instead.
-      const YAML::Mark mark = value.IsNull() ? key.Mark() : value.Mark();
-      entries_.emplace(name, Entry{key.Mark(), Field{value, path, mark, key.Mark()}});
-    }
-  }
-
-  bool has(const std::string &key) const { return entries_.count(key) > 0; }
-
-  std::optional<Field> get(const std::string &key) const
-  {
-    const auto it = entries_.find(key);
-    if (it == entries_.end())
-      return std::nullopt;
-    return it->second.field;
-  }
-
-  // Missing keys are reported at the map that lacks them.
-  Field require(const std::string &key, const std::string &hint = "") const
-  {
-    const auto it = entries_.find(key);
-    if (it == entries_.end())
-      report_.fail(self_.key_mark, childPath(self_.path, key), "missing required key" + hint);
-    return it->second.field;
-  }
-
-  // Rejects a key that the schema knows but that makes no sense here.
-  void forbid(const std::string &key, const std::string &reason) const
-  {
-    const auto it = entries_.find(key);
-    if (it != entries_.end())
-      report_.fail(it->second.key_mark, it->second.field.path, reason);
-  }
-
-  const Field &self() const { return self_; }
-
-  YAML::Mark keyMark(const std::string &key) const { return entries_.at(key).key_mark; }
-
-private:
-  struct Entry {
-    YAML::Mark key_mark;
-    Field field;
-  };
-
-  static std::string unknownKeyReason(const std::string &name, const std::vector<std::string> &allowed)
-  {
-    std::string reason = "unknown key";
-    // Suggest only close matches that share at least one character
-    // position, so that "G" does not suggest "E".
-    std::size_t best = std::min<std::size_t>(3, name.size());
-    std::string suggestion;
-    for (const auto &candidate : allowed) {
-      const std::size_t d = editDistance(name, candidate);
-      if (d < best) {
-        best = d;
-        suggestion = candidate;
-      }
-    }
-    if (!suggestion.empty())
-      reason += " (did you mean '" + suggestion + "'?)";
-    return reason + "; allowed keys here: " + join(allowed);
-  }
-
-  const Reporter &report_;
-  Field self_;
-  std::map<std::string, Entry> entries_;
-};
+using namespace scene_io;
 
 // Converts the scene document into a Scene, one section at a time.
-class SceneParser {
+class SceneParser : CheckedYaml {
 public:
-  explicit SceneParser(const Reporter &report) : report_(report) {}
+  explicit SceneParser(const Reporter &report) : CheckedYaml(report) {}
 
   void parse(const Field &root, Scene &scene);
 
 private:
-  // --- scalars ---------------------------------------------------------
-  const std::string &scalarText(const Field &f, const std::string &expected) const
-  {
-    if (!f.node.IsScalar())
-      report_.fail(f, "expected " + expected + ", got " + describeNode(f.node));
-    return f.node.Scalar();
-  }
-
-  double number(const Field &f) const
-  {
-    const std::string &text = scalarText(f, "a number");
-    // A quoted "2.0" is a string in YAML; accepting it would hide typos
-    // such as a misplaced quote swallowing the rest of the line.
-    if (f.node.Tag() == "!")
-      report_.fail(f, "expected a number, got " + describeNode(f.node));
-    double value = 0;
-    switch (parseNumber(text, value)) {
-    case NumberText::Ok:
-      return value;
-    case NumberText::NotFinite:
-      report_.fail(f, "must be a finite number (got " + text + ")");
-    case NumberText::OutOfRange:
-      report_.fail(f, "number out of range (got " + text + ")");
-    case NumberText::NotANumber:
-      break;
-    }
-    report_.fail(f, "expected a number, got " + describeNode(f.node));
-  }
-
-  double positive(const Field &f) const
-  {
-    const double x = number(f);
-    if (!(x > 0))
-      report_.fail(f, "must be > 0 (got " + f.node.Scalar() + ")");
-    return x;
-  }
-
-  double nonNegative(const Field &f) const
-  {
-    const double x = number(f);
-    if (!(x >= 0))
-      report_.fail(f, "must be >= 0 (got " + f.node.Scalar() + ")");
-    return x;
-  }
-
-  // Integers may be written as 8, 8.0 or 1e6, but must be whole numbers.
-  int integer(const Field &f, int lo, int hi, const std::string &too_large = "") const
-  {
-    const double x = number(f);
-    if (std::floor(x) != x)
-      report_.fail(f, "must be a whole number (got " + f.node.Scalar() + ")");
-    if (x < lo)
-      report_.fail(f, "must be >= " + std::to_string(lo) + " (got " + f.node.Scalar() + ")");
-    if (x > hi)
-      report_.fail(f, (too_large.empty() ? "" : too_large + ": ") + "must be <= " + std::to_string(hi) +
-                          " (got " + f.node.Scalar() + ")");
-    return static_cast<int>(x);
-  }
-
-  std::string text(const Field &f) const
-  {
-    const std::string &s = scalarText(f, "a text");
-    if (s.empty())
-      report_.fail(f, "must not be empty");
-    return s;
-  }
-
-  // Names end up in output files and plot legends; keep them to a
-  // character set that is safe in file names, HDF5 paths and CSV headers.
-  std::string name(const Field &f) const
-  {
-    const std::string s = text(f);
-    const bool safe = std::all_of(s.begin(), s.end(), [](unsigned char c) {
-      return std::isalnum(c) || c == '_' || c == '-' || c == '.';
-    });
-    if (!safe)
-      report_.fail(f, "names may contain only letters, digits, '_', '-' and '.' (got '" + s + "')");
-    return s;
-  }
-
-  // One of a fixed set of words; returns its index.
-  std::size_t choice(const Field &f, const std::vector<std::string> &options) const
-  {
-    const std::string expected = "one of " + join(options);
-    const std::string &s = scalarText(f, expected);
-    const auto it = std::find(options.begin(), options.end(), s);
-    if (it == options.end())
-      report_.fail(f, "must be " + expected + " (got '" + s + "')");
-    return static_cast<std::size_t>(it - options.begin());
-  }
-
-  std::vector<Field> list(const Field &f) const
-  {
-    if (f.node.IsNull())
-      return {};
-    if (!f.node.IsSequence())
-      report_.fail(f, "expected a list, got " + describeNode(f.node));
-    std::vector<Field> items;
-    for (std::size_t i = 0; i < f.node.size(); ++i) {
-      const YAML::Node item = f.node[i];
-      const YAML::Mark mark = item.IsNull() ? f.mark : item.Mark();
-      items.push_back(Field{item, f.path + "[" + std::to_string(i) + "]", mark, mark});
-    }
-    return items;
-  }
-
-  std::vector<double> numbers(const Field &f) const
-  {
-    if (!f.node.IsSequence())
-      report_.fail(f, "expected a list of numbers, got " + describeNode(f.node));
-    std::vector<double> values;
-    for (const Field &item : list(f))
-      values.push_back(number(item));
-    return values;
-  }
-
-  Vec2d vec2(const Field &f) const
-  {
-    if (!f.node.IsSequence() || f.node.size() != 2)
-      report_.fail(f, "expected a list of two numbers [x, y], got " +
-                          (f.node.IsSequence() ? "a list of " + std::to_string(f.node.size())
-                                               : describeNode(f.node)));
-    const auto items = list(f);
-    return {number(items[0]), number(items[1])};
-  }
-
-  // --- time functions --------------------------------------------------
-  // A plain number is a constant; otherwise a map with a 'type'.
-  TimeFunction timeFunction(const Field &f) const
-  {
-    if (f.node.IsScalar())
-      return TimeFunction::constant(number(f));
-    if (!f.node.IsMap())
-      report_.fail(f, "expected a number or a time function map {type: ...}, got " + describeNode(f.node));
-    const MapView m(report_, f,
-                    {"type", "value", "t0", "t1", "from", "to", "t", "values", "amplitude", "frequency", "phase",
-                     "offset"});
-    const std::vector<std::string> types{"constant", "ramp", "smooth_step", "table", "sine"};
-    const std::size_t type = choice(m.require("type", " (one of " + join(types) + ")"), types);
-    // Each kind accepts only its own parameters.
-    const std::vector<std::vector<std::string>> keys_of_type{
-        {"value"},
-        {"t0", "t1", "from", "to"},
-        {"t0", "t1", "from", "to"},
-        {"t", "values"},
-        {"amplitude", "frequency", "phase", "offset", "t0"}};
-    for (const char *key : {"value", "t0", "t1", "from", "to", "t", "values", "amplitude", "frequency",
-                             "phase", "offset"}) {
-      const auto &own = keys_of_type[type];
-      if (std::find(own.begin(), own.end(), key) == own.end())
-        m.forbid(key, "not a parameter of a " + types[type] + " function (it takes " + join(own) + ")");
-    }
-    switch (type) {
-    case 0:
-      return TimeFunction::constant(number(m.require("value")));
-    case 1:
-    case 2: {
-      const double t0 = number(m.require("t0"));
-      const Field t1_field = m.require("t1");
-      const double t1 = number(t1_field);
-      if (!(t1 > t0))
-        report_.fail(t1_field, "must be > t0 (got t0 = " + fmt(t0) + ", t1 = " + fmt(t1) + ")");
-      const double from = number(m.require("from"));
-      const double to = number(m.require("to"));
-      return type == 1 ? TimeFunction::ramp(t0, t1, from, to) : TimeFunction::smoothStep(t0, t1, from, to);
-    }
-    case 3: {
-      const Field t_field = m.require("t");
-      const Field v_field = m.require("values");
-      const std::vector<double> t = numbers(t_field);
-      const std::vector<double> v = numbers(v_field);
-      if (t.size() < 2)
-        report_.fail(t_field, "a table needs at least 2 points (got " + std::to_string(t.size()) + ")");
-      if (v.size() != t.size())
-        report_.fail(v_field, "must have as many entries as t (" + std::to_string(t.size()) + "), got " +
-                                  std::to_string(v.size()));
-      const auto items = list(t_field);
-      for (std::size_t k = 1; k < t.size(); ++k)
-        if (!(t[k] > t[k - 1]))
-          report_.fail(items[k], "times must be strictly increasing (t[" + std::to_string(k) + "] = " +
-                                     fmt(t[k]) + " after " + fmt(t[k - 1]) + ")");
-      return TimeFunction::table(t, v);
-    }
-    default: {
-      const double amplitude = number(m.require("amplitude"));
-      const double frequency = nonNegative(m.require("frequency"));
-      const double phase_deg = m.has("phase") ? number(*m.get("phase")) : 0.0;
-      const double offset = m.has("offset") ? number(*m.get("offset")) : 0.0;
-      const double t0 = m.has("t0") ? number(*m.get("t0")) : 0.0;
-      return TimeFunction::sine(amplitude, frequency, phase_deg * kRadPerDeg, offset, t0);
-    }
-    }
-  }
-
-  // Angles are written in degrees; the Scene holds radians.
-  TimeFunction angleFunction(const Field &f) const { return timeFunction(f).scaled(kRadPerDeg); }
-
-  // --- references --------------------------------------------------------
-  const BodySpec &body(const Field &f, const Scene &scene) const
-  {
-    const std::string s = text(f);
-    for (const BodySpec &b : scene.bodies)
-      if (b.name == s)
-        return b;
-    std::vector<std::string> names;
-    for (const BodySpec &b : scene.bodies)
-      names.push_back(b.name);
-    report_.fail(f, "unknown body '" + s + "' (bodies: " + join(names) + ")");
-  }
-
-  // A material coordinate: start, end or s in [0, length] in metres.
-  double materialCoordinate(const Field &f, const BodySpec &b) const
-  {
-    const std::string expected = "start, end or a number in [0, " + fmt(b.length) + "] (the length of body '" +
-                                 b.name + "', m)";
-    if (f.node.IsScalar() && f.node.Scalar() == "start")
-      return 0.0;
-    if (f.node.IsScalar() && f.node.Scalar() == "end")
-      return b.length;
-    double parsed = 0;
-    if (!f.node.IsScalar() || f.node.Tag() == "!" || parseNumber(f.node.Scalar(), parsed) == NumberText::NotANumber)
-      report_.fail(f, "expected " + expected + ", got " + describeNode(f.node));
-    const double s = number(f);
-    if (s < 0 || s > b.length)
-      report_.fail(f, "must be " + expected + " (got " + f.node.Scalar() + ")");
-    return s;
-  }
-
-  PointRef point(const MapView &m, const Scene &scene, const std::string &body_key = "body",
-                 const std::string &at_key = "at") const
-  {
-    const BodySpec &b = body(m.require(body_key), scene);
-    return PointRef{b.name, materialCoordinate(m.require(at_key), b)};
-  }
-
-  static const BodySpec &bodyNamed(const Scene &scene, const std::string &name)
-  {
-    return *std::find_if(scene.bodies.begin(), scene.bodies.end(),
-                         [&](const BodySpec &b) { return b.name == name; });
-  }
-
-  // Names are unique within each list; `what` is e.g. "body".
-  void claimName(std::map<std::string, std::string> &taken, const std::string &name, const Field &where,
-                 const std::string &what, const std::string &item_path) const
-  {
-    const auto [it, inserted] = taken.emplace(name, item_path);
-    if (!inserted)
-      report_.fail(where, "duplicate " + what + " name '" + name + "' (also used by " + it->second + ")");
-  }
-
-  // Name from an optional 'name' key, or "<prefix><index>".
-  std::string itemName(const MapView &m, std::map<std::string, std::string> &taken, const std::string &what,
-                       const std::string &default_name) const
-  {
-    const std::optional<Field> given = m.get("name");
-    const std::string result = given ? name(*given) : default_name;
-    claimName(taken, result, given ? *given : m.self(), what, m.self().path);
-    return result;
-  }
-
   // --- sections ----------------------------------------------------------
   BodySpec parseBody(const Field &f, std::map<std::string, std::string> &taken) const;
   SectionSpec parseSection(const Field &f, bool rigid) const;
-  ConstraintSpec parseConstraint(const Field &f, std::size_t index, const Scene &scene,
-                                 std::map<std::string, std::string> &taken) const;
-  PointForceSpec parseLoad(const Field &f, std::size_t index, const Scene &scene,
-                           std::map<std::string, std::string> &taken) const;
-  FrictionSpec parseFriction(const Field &f) const;
-  PointMassSpec parseMass(const Field &f, std::size_t index, const Scene &scene,
-                          std::map<std::string, std::string> &taken) const;
+  // Components of registered physics types: component_reader.cpp.
+  void parseSection(const MapView &parent, const std::string &key, const std::string &section, Scene &scene) const
+  {
+    readComponents(report_, parent, key, section, scene);
+  }
   DynamicSpec parseDynamic(const Field &f) const;
   StaticSpec parseStatic(const Field &f) const;
   ModalSpec parseModal(const Field &f, bool required_nonzero) const;
-  OutputSpec parseOutput(const Field &f, const Scene &scene) const;
-
-  const Reporter &report_;
+  void parseOutput(const Field &f, Scene &scene) const;
 };
 
 void SceneParser::parse(const Field &root, Scene &scene)
@@ -568,24 +79,9 @@ void SceneParser::parse(const Field &root, Scene &scene)
   for (const Field &item : bodies)
     scene.bodies.push_back(parseBody(item, body_names));
 
-  if (const auto c = top.get("constraints")) {
-    std::map<std::string, std::string> taken;
-    const auto items = list(*c);
-    for (std::size_t i = 0; i < items.size(); ++i)
-      scene.constraints.push_back(parseConstraint(items[i], i, scene, taken));
-  }
-  if (const auto l = top.get("loads")) {
-    std::map<std::string, std::string> taken;
-    const auto items = list(*l);
-    for (std::size_t i = 0; i < items.size(); ++i)
-      scene.forces.push_back(parseLoad(items[i], i, scene, taken));
-  }
-  if (const auto ms = top.get("masses")) {
-    std::map<std::string, std::string> taken;
-    const auto items = list(*ms);
-    for (std::size_t i = 0; i < items.size(); ++i)
-      scene.masses.push_back(parseMass(items[i], i, scene, taken));
-  }
+  parseSection(top, "constraints", "constraints", scene);
+  parseSection(top, "loads", "loads", scene);
+  parseSection(top, "masses", "masses", scene);
 
   // Analysis settings: a section that the chosen analysis would ignore is
   // an error, since the user evidently expected it to matter.
@@ -605,29 +101,7 @@ void SceneParser::parse(const Field &root, Scene &scene)
   else if (const auto m = top.get("modal"))
     scene.modal = parseModal(*m, false);
 
-  if (const auto sp = top.get("springs")) {
-    std::map<std::string, std::string> taken;
-    const auto items = list(*sp);
-    for (std::size_t i = 0; i < items.size(); ++i) {
-      const MapView m(report_, items[i],
-                      {"name", "body", "at", "other", "other_at", "point", "stiffness", "rest_length", "damping"});
-      SpringSpec spring;
-      spring.mark = report_.sourceMark(items[i]);
-      spring.name = itemName(m, taken, "spring", "spring" + std::to_string(i));
-      spring.a = point(m, scene);
-      if (m.has("other")) {
-        m.forbid("point", "not allowed together with 'other' (the spring joins two bodies)");
-        spring.b = point(m, scene, "other", "other_at");
-      } else {
-        m.forbid("other_at", "only allowed together with 'other'");
-        spring.ground = vec2(m.require("point"));
-      }
-      spring.stiffness = positive(m.require("stiffness"));
-      if (const auto l = m.get("rest_length")) spring.restLength = nonNegative(*l);
-      if (const auto c = m.get("damping")) spring.damping = nonNegative(*c);
-      scene.springs.push_back(spring);
-    }
-  }
+  parseSection(top, "springs", "springs", scene);
   if (const auto tr = top.get("tracking")) {
     if (scene.analysis != Scene::Analysis::Dynamic)
       report_.fail(*tr, "frequency tracking needs 'analysis: dynamic'");
@@ -638,7 +112,7 @@ void SceneParser::parse(const Field &root, Scene &scene)
       for (const Field &item : list(*sa)) scene.tracking.shapesAt.push_back(nonNegative(item));
   }
   if (const auto o = top.get("output"))
-    scene.output = parseOutput(*o, scene);
+    parseOutput(*o, scene);
 }
 
 BodySpec SceneParser::parseBody(const Field &f, std::map<std::string, std::string> &taken) const
@@ -716,159 +190,6 @@ SectionSpec SceneParser::parseSection(const Field &f, bool rigid) const
   return s;
 }
 
-ConstraintSpec SceneParser::parseConstraint(const Field &f, std::size_t index, const Scene &scene,
-                                            std::map<std::string, std::string> &taken) const
-{
-  const MapView m(report_, f,
-                  {"type", "name", "body", "at", "point", "angle", "other", "other_at", "track", "joint", "displacement",
-                   "from", "from_at", "pulley", "pulley_at", "to", "to_at", "length", "friction"});
-  const std::vector<std::string> types{"clamp", "pin", "angle_drive", "sliding_joint", "extraction_drive", "rope"};
-  const std::size_t type = choice(m.require("type", " (one of " + join(types) + ")"), types);
-  ConstraintSpec c;
-  const ConstraintSpec::Type kinds[] = {ConstraintSpec::Type::Clamp, ConstraintSpec::Type::Pin,
-                                        ConstraintSpec::Type::AngleDrive, ConstraintSpec::Type::SlidingJoint,
-                                        ConstraintSpec::Type::ExtractionDrive, ConstraintSpec::Type::Rope};
-  c.type = kinds[type];
-  c.mark = report_.sourceMark(f);
-  c.name = itemName(m, taken, "constraint", types[type] + std::to_string(index));
-  if (c.type != ConstraintSpec::Type::SlidingJoint) {
-    m.forbid("track", "only allowed for a sliding_joint");
-    m.forbid("friction", "only allowed for a sliding_joint");
-  }
-  if (c.type != ConstraintSpec::Type::ExtractionDrive) {
-    m.forbid("joint", "only allowed for an extraction_drive");
-    m.forbid("displacement", "only allowed for an extraction_drive");
-  }
-
-  if (c.type != ConstraintSpec::Type::Rope)
-    for (const char *key : {"from", "from_at", "pulley", "pulley_at", "to", "to_at", "length"})
-      m.forbid(key, "only allowed for a rope");
-  if (c.type == ConstraintSpec::Type::Rope) {
-    // Rope from a point over a pulley to a third point; taut at t = 0 unless a length is given.
-    for (const char *key : {"body", "at", "point", "angle", "other", "other_at"})
-      m.forbid(key, "not allowed for a rope (it names its points with from/from_at, pulley/pulley_at, to/to_at)");
-    c.a = point(m, scene, "from", "from_at");
-    c.b = point(m, scene, "pulley", "pulley_at");
-    c.c = point(m, scene, "to", "to_at");
-    if (const auto len = m.get("length")) c.length = positive(*len);
-    return c;
-  }
-  if (c.type == ConstraintSpec::Type::ExtractionDrive) {
-    // Drives the slack coordinate of a sliding joint: s(t) = s(0) + displacement(t).
-    for (const char *key : {"body", "at", "point", "angle", "other", "other_at"})
-      m.forbid(key, "not allowed for an extraction_drive (it names a sliding joint with 'joint')");
-    const Field joint = m.require("joint");
-    c.joint = name(joint);
-    bool found = false;
-    for (const ConstraintSpec &other : scene.constraints)
-      found = found || (other.type == ConstraintSpec::Type::SlidingJoint && other.name == c.joint);
-    if (!found)
-      report_.fail(joint, "names no sliding_joint listed before it ('" + c.joint + "')");
-    c.displacement = timeFunction(m.require("displacement"));
-    return c;
-  }
-  if (c.type == ConstraintSpec::Type::SlidingJoint) {
-    // The slider point (body, at) runs along the centerline of `track`.
-    for (const char *key : {"point", "angle", "other", "other_at"})
-      m.forbid(key, "not allowed for a sliding_joint (it names the slider point with body/at and the track with 'track')");
-    c.a = point(m, scene);
-    const Field track = m.require("track");
-    c.track = body(track, scene).name;
-    if (c.track == c.a.body)
-      report_.fail(track, "must name another body than 'body' ('" + c.a.body + "')");
-    if (const auto fr = m.get("friction")) c.friction = parseFriction(*fr);
-    return c;
-  }
-
-  // Forbid the keys that do not belong to this type before reading the rest,
-  // so that the message names the real mistake.
-  const bool between_bodies = c.type == ConstraintSpec::Type::Pin && m.has("other");
-  switch (c.type) {
-  case ConstraintSpec::Type::Clamp:
-    for (const char *key : {"other", "other_at"})
-      m.forbid(key, "not allowed for a clamp (a clamp holds a body to the ground; join two bodies with a pin)");
-    break;
-  case ConstraintSpec::Type::Pin:
-    m.forbid("angle", "not allowed for a pin (a pin leaves the rotation free; use a clamp or an angle_drive)");
-    if (between_bodies)
-      m.forbid("point", "not allowed together with 'other' (the pin joins two bodies, not a body to the ground)");
-    else
-      m.forbid("other_at", "only allowed together with 'other'");
-    break;
-  case ConstraintSpec::Type::AngleDrive:
-    for (const char *key : {"point", "other", "other_at"})
-      m.forbid(key, "not allowed for an angle_drive (it prescribes only the direction of the body axis)");
-    break;
-  default:
-    break; // the other types are not read from scene files (yet)
-  }
-
-  c.a = point(m, scene);
-  const BodySpec &a = bodyNamed(scene, c.a.body);
-  if (between_bodies) {
-    const Field other_field = m.require("other");
-    c.b = point(m, scene, "other", "other_at");
-    if (c.b->body == c.a.body)
-      report_.fail(other_field, "must name another body than 'body' ('" + c.a.body + "')");
-  }
-  if (c.type != ConstraintSpec::Type::AngleDrive && !between_bodies) {
-    // Default: the point stays where the material point starts.
-    if (const auto p = m.get("point"))
-      c.ground = vec2(*p);
-    else
-      c.ground = {a.origin[0] + c.a.s * std::cos(a.angle), a.origin[1] + c.a.s * std::sin(a.angle)};
-  }
-  if (c.type != ConstraintSpec::Type::Pin)
-    c.angle = m.has("angle") ? angleFunction(*m.get("angle")) : TimeFunction::constant(a.angle);
-  return c;
-}
-
-// LuGre parameters of a sliding joint (model.md §3); defaults in scene.hpp.
-FrictionSpec SceneParser::parseFriction(const Field &f) const
-{
-  const MapView m(report_, f, {"mu_s", "mu_c", "v_s", "alpha", "sigma0", "sigma1", "sigma2", "stick_velocity"});
-  FrictionSpec fr;
-  const Field mu_s = m.require("mu_s"), mu_c = m.require("mu_c");
-  fr.mu_s = positive(mu_s);
-  fr.mu_c = positive(mu_c);
-  if (fr.mu_c > fr.mu_s) report_.fail(mu_c, "must be <= mu_s (" + fmt(fr.mu_s) + "): kinetic friction above static");
-  if (const auto v = m.get("v_s")) fr.v_s = positive(*v);
-  if (const auto a = m.get("alpha")) fr.alpha = positive(*a);
-  if (const auto s0 = m.get("sigma0")) fr.sigma0 = positive(*s0);
-  if (const auto s1 = m.get("sigma1")) fr.sigma1 = nonNegative(*s1);
-  if (const auto s2 = m.get("sigma2")) fr.sigma2 = nonNegative(*s2);
-  fr.stick_velocity = fr.v_s / 10;
-  if (const auto sv = m.get("stick_velocity")) fr.stick_velocity = positive(*sv);
-  return fr;
-}
-
-PointForceSpec SceneParser::parseLoad(const Field &f, std::size_t index, const Scene &scene,
-                                      std::map<std::string, std::string> &taken) const
-{
-  const MapView m(report_, f, {"type", "name", "body", "at", "force", "scale"});
-  choice(m.require("type", " (point_force)"), {"point_force"});
-  PointForceSpec p;
-  p.mark = report_.sourceMark(f);
-  p.name = itemName(m, taken, "load", "force" + std::to_string(index));
-  p.at = point(m, scene);
-  p.force = vec2(m.require("force"));
-  if (const auto s = m.get("scale"))
-    p.scale = timeFunction(*s);
-  return p;
-}
-
-PointMassSpec SceneParser::parseMass(const Field &f, std::size_t index, const Scene &scene,
-                                     std::map<std::string, std::string> &taken) const
-{
-  const MapView m(report_, f, {"name", "body", "at", "mass"});
-  PointMassSpec p;
-  p.mark = report_.sourceMark(f);
-  p.name = itemName(m, taken, "mass", "mass" + std::to_string(index));
-  p.at = point(m, scene);
-  p.mass = positive(m.require("mass"));
-  return p;
-}
-
 DynamicSpec SceneParser::parseDynamic(const Field &f) const
 {
   const MapView m(report_, f, {"t_end", "dt", "dt_min", "rho_inf", "max_newton"});
@@ -923,44 +244,14 @@ ModalSpec SceneParser::parseModal(const Field &f, bool required_nonzero) const
   return s;
 }
 
-OutputSpec SceneParser::parseOutput(const Field &f, const Scene &scene) const
+void SceneParser::parseOutput(const Field &f, Scene &scene) const
 {
   const MapView m(report_, f, {"state_interval", "sensors", "frames"});
-  OutputSpec o;
+  OutputSpec &o = scene.output;
   if (const auto interval = m.get("state_interval"))
     o.state_interval = nonNegative(*interval);
-  if (const auto sensors = m.get("sensors")) {
-    std::map<std::string, std::string> taken;
-    const auto items = list(*sensors);
-    for (std::size_t i = 0; i < items.size(); ++i) {
-      const MapView s(report_, items[i], {"name", "body", "at"});
-      SensorSpec sensor;
-      sensor.name = itemName(s, taken, "sensor", "sensor" + std::to_string(i));
-      sensor.at = point(s, scene);
-      o.sensors.push_back(sensor);
-    }
-  }
-  if (const auto frames = m.get("frames")) {
-    std::map<std::string, std::string> taken;
-    const auto items = list(*frames);
-    for (std::size_t i = 0; i < items.size(); ++i) {
-      const MapView s(report_, items[i], {"name", "body", "at", "axis_joint"});
-      FrameSensorSpec frame;
-      frame.name = itemName(s, taken, "frame", "frame" + std::to_string(i));
-      frame.point = point(s, scene);
-      const Field joint = s.require("axis_joint");
-      frame.axisJoint = name(joint);
-      bool found = false;
-      for (const ConstraintSpec &c : scene.constraints)
-        found = found || (c.type == ConstraintSpec::Type::SlidingJoint && c.name == frame.axisJoint &&
-                          c.track == frame.point.body);
-      if (!found)
-        report_.fail(joint, "must name a sliding_joint whose track is '" + frame.point.body + "' (got '" +
-                              frame.axisJoint + "')");
-      o.frames.push_back(frame);
-    }
-  }
-  return o;
+  parseSection(m, "sensors", "output.sensors", scene);
+  parseSection(m, "frames", "output.frames", scene);
 }
 
 // Counts the documents of a YAML stream, at most three, through yaml-cpp's

@@ -1,16 +1,11 @@
 #include "boomdyn/model.hpp"
 
 #include "boomdyn/ancf_beam.hpp"
-#include "boomdyn/angle_drive.hpp"
 #include "boomdyn/beam_element_item.hpp"
 #include "boomdyn/lugre_friction.hpp"
-#include "boomdyn/pin.hpp"
+#include "boomdyn/model_builder.hpp"
+#include "boomdyn/physics_type.hpp"
 #include "boomdyn/rigid_body.hpp"
-#include "boomdyn/rope.hpp"
-#include "boomdyn/slack_drive.hpp"
-#include "boomdyn/sliding_joint.hpp"
-#include "boomdyn/spring.hpp"
-#include "boomdyn/point_load.hpp"
 
 #include <Eigen/Eigenvalues>
 
@@ -63,132 +58,55 @@ Model::Model(const Scene &scene) : scene_(scene)
     for (int el = 0; el < beam->numElements(); ++el) items_.push_back(std::make_unique<BeamElementItem>(*beam, el, mass, g));
     bodies_.push_back(std::move(beam));
   }
-  // Slack coordinates follow the body coordinates, one per sliding joint,
-  // starting where the slider point projects onto the (straight) initial track.
-  std::vector<PetscInt> slackOf(scene.constraints.size(), -1);
-  std::vector<double> s0Of(scene.constraints.size(), 0.0);
-  std::vector<double> q0 = initialCoordinates();
-  for (std::size_t k = 0; k < scene.constraints.size(); ++k) {
-    const ConstraintSpec &c = scene.constraints[k];
-    if (c.type != ConstraintSpec::Type::SlidingJoint) continue;
-    const Body *track = findBody(c.track), *slider = findBody(c.a.body);
-    CenterlineSample origin, point;
-    const CenterlineLocation l0 = track->locate(0.0), lp = slider->locate(c.a.s);
-    std::vector<double> v0(8), vp(8);
-    for (int i = 0; i < 8; ++i) v0[i] = q0[l0.dofs[i]], vp[i] = q0[lp.dofs[i]];
-    track->sample(l0, 0.0, v0.data(), origin);
-    slider->sample(lp, c.a.s, vp.data(), point);
-    const double s0 = (point.r[0] - origin.r[0]).dot(origin.r[1].normalized());
-    if (s0 < 0.0 || s0 > track->length()) {
-      std::ostringstream os;
-      os << where(c.mark) << "sliding joint '" << c.name << "': the slider point lies outside its track '" << c.track
-         << "' (at s = " << s0 << " m of " << track->length() << " m)";
-      throw ModelError(os.str());
-    }
-    slackOf[k] = nq_++;
-    s0Of[k] = s0;
-    slackInitial_.push_back({slackOf[k], s0});
-  }
-  // One first-order friction state z per frictional sliding joint, after the
-  // slack coordinates (so that every coordinate is numbered before the rows).
-  std::vector<PetscInt> frictionStateOf(scene.constraints.size(), -1);
-  for (std::size_t k = 0; k < scene.constraints.size(); ++k)
-    if (scene.constraints[k].type == ConstraintSpec::Type::SlidingJoint && scene.constraints[k].friction) {
-      frictionStateOf[k] = nq_++;
-      firstOrder_.push_back(frictionStateOf[k]);
-      frictionJoints_.push_back(scene.constraints[k].name);
-    }
-  for (std::size_t k = 0; k < scene.constraints.size(); ++k) {
-    const ConstraintSpec &c = scene.constraints[k];
-    const Body *a = c.type == ConstraintSpec::Type::ExtractionDrive ? nullptr : findBody(c.a.body);
-    switch (c.type) {
-    case ConstraintSpec::Type::ExtractionDrive: {
-      std::size_t j = 0;
-      while (j < scene.constraints.size() && !(scene.constraints[j].type == ConstraintSpec::Type::SlidingJoint &&
-                                                scene.constraints[j].name == c.joint))
-        ++j;
-      if (j == scene.constraints.size())
-        throw ModelError(where(c.mark) + "extraction drive '" + c.name + "': no sliding joint named '" + c.joint + "'");
-      addConstraint(std::make_shared<SlackDrive>(c.name, slackOf[j], s0Of[j], c.displacement), c.mark);
-      break;
-    }
-    case ConstraintSpec::Type::Rope: {
-      const Rope::Point P{a, c.a.s}, Q{findBody(c.b->body), c.b->s}, R{findBody(c.c->body), c.c->s};
-      double length = c.length;
-      if (length <= 0) { // the rope is taut in the initial configuration
-        const Rope probe(c.name, P, Q, R, 0.0);
-        std::vector<PetscInt> dofs;
-        probe.coordinates(dofs);
-        std::vector<double> vals;
-        for (PetscInt d : dofs) vals.push_back(q0[d]);
-        length = probe.spannedLength(vals.data());
+  // Everything else is built by its physics type (physics_type.hpp), stage
+  // by stage over all components, so that the unknowns are numbered
+  // [body coordinates | extra coordinates | first-order states | multiplier
+  // rows] and each group in scene order.
+  ModelBuilder builder(*this);
+  using Stage = void (*PhysicsType::*)(const ComponentSpec &, ModelBuilder &);
+  for (const Stage stage : {&PhysicsType::addCoordinates, &PhysicsType::addStates, &PhysicsType::build})
+    for (const std::string &section : Scene::componentSections())
+      for (ComponentSpec &spec : scene_.components(section)) {
+        const PhysicsType *type = findPhysicsType(section, spec.type);
+        if (!type) throw ModelError(where(spec.mark) + "no type '" + spec.type + "' in section " + section);
+        if (stage == &PhysicsType::addCoordinates && type->complete) type->complete(spec, scene_);
+        if (type->*stage) (type->*stage)(spec, builder);
       }
-      addConstraint(std::make_shared<Rope>(c.name, P, Q, R, length), c.mark);
-      break;
-    }
-    case ConstraintSpec::Type::SlidingJoint: {
-      auto joint = std::make_shared<SlidingJoint>(c.name, *findBody(c.track), *a, c.a.s, slackOf[k], s0Of[k]);
-      slidingJoints_.push_back(joint);
-      addConstraint(joint, c.mark);
-      if (c.friction) { // lambda_n is the joint's second row
-        auto friction = std::make_unique<LuGreFriction>(joint, frictionStateOf[k], constraints_.back()->firstRow() + 1,
-                                                        *c.friction);
-        frictions_.push_back(friction.get());
-        items_.push_back(std::move(friction));
-      }
-      break;
-    }
-    case ConstraintSpec::Type::Pin:
-      if (c.b) addConstraint(std::make_shared<Pin>(c.name, *a, c.a.s, *findBody(c.b->body), c.b->s), c.mark);
-      else addConstraint(std::make_shared<Pin>(c.name, *a, c.a.s, toVec(c.ground)), c.mark);
-      break;
-    case ConstraintSpec::Type::AngleDrive:
-      addConstraint(std::make_shared<AngleDrive>(c.name, *a, c.a.s, c.angle), c.mark);
-      break;
-    case ConstraintSpec::Type::Clamp:
-      addConstraint(std::make_shared<Pin>(c.name + ".pin", *a, c.a.s, toVec(c.ground)), c.mark);
-      addConstraint(std::make_shared<AngleDrive>(c.name + ".angle", *a, c.a.s, c.angle), c.mark);
-      break;
-    }
-  }
-  for (const PointForceSpec &f : scene.forces)
-    items_.push_back(std::make_unique<PointForce>(f.name, *findBody(f.at.body), f.at.s, toVec(f.force), f.scale));
-  for (const PointMassSpec &m : scene.masses) {
-    // PointMass uses the linear centerline of ANCF beams (no centripetal term).
-    if (dynamic_cast<const RigidBody *>(findBody(m.at.body)))
-      throw ModelError(where(m.mark) + "point mass '" + m.name + "' on rigid body '" + m.at.body +
-                       "': not supported; add its mass to the body's section instead");
-    items_.push_back(std::make_unique<PointMass>(m.name, *findBody(m.at.body), m.at.s, m.mass, g));
-  }
-  for (const SpringSpec &sp : scene.springs) {
-    Spring::End a{findBody(sp.a.body), sp.a.s, Vec2::Zero()}, b{nullptr, 0.0, toVec(sp.ground)};
-    if (sp.b) b = Spring::End{findBody(sp.b->body), sp.b->s, Vec2::Zero()};
-    double rest = sp.restLength;
-    if (rest < 0) { // the initial distance
-      const Spring probe(sp.name, a, b, 1.0, 0.0, 0.0);
-      std::vector<PetscInt> dofs;
-      probe.coordinates(dofs);
-      std::vector<double> vals, zero(dofs.size(), 0.0);
-      for (PetscInt d : dofs) vals.push_back(q0[d]);
-      EnergyParts e;
-      probe.energy(AssemblyContext{}, ItemValues{vals.data(), zero.data(), zero.data(), nullptr}, e);
-      rest = std::sqrt(2.0 * e.strain); // with k = 1 and L0 = 0 the energy is l^2 / 2
-    }
-    items_.push_back(std::make_unique<Spring>(sp.name, a, b, sp.stiffness, rest, sp.damping));
-  }
-  for (const SensorSpec &s : scene.output.sensors) sensors_.push_back({s.name, findBody(s.at.body), s.at.s});
   checkInitialConfiguration();
 }
 
-void Model::addConstraint(std::shared_ptr<Constraint> c, const SourceMark &mark)
+PetscInt ModelBuilder::addCoordinate(double initial)
 {
-  // Multiplier rows follow all coordinates; bodies are created first, so nq_ is final here.
+  const PetscInt index = model_.nq_++;
+  model_.slackInitial_.push_back({index, initial});
+  return index;
+}
+
+PetscInt ModelBuilder::addFirstOrderState(const std::string &joint)
+{
+  const PetscInt index = model_.nq_++;
+  model_.firstOrder_.push_back(index);
+  model_.frictionJoints_.push_back(joint);
+  return index;
+}
+
+const ConstraintItem &ModelBuilder::addConstraint(std::shared_ptr<Constraint> c, const SourceMark &mark)
+{
+  // Multiplier rows follow all coordinates, which are numbered in the earlier stages.
   const int rows = c->numRows();
-  auto item = std::make_unique<ConstraintItem>(std::move(c), nq_ + nlambda_);
-  nlambda_ += rows;
-  constraints_.push_back(item.get());
-  constraintMarks_.push_back(mark);
-  items_.push_back(std::move(item));
+  auto item = std::make_unique<ConstraintItem>(std::move(c), model_.nq_ + model_.nlambda_);
+  model_.nlambda_ += rows;
+  const ConstraintItem &added = *item;
+  model_.constraints_.push_back(item.get());
+  model_.constraintMarks_.push_back(mark);
+  model_.items_.push_back(std::move(item));
+  return added;
+}
+
+void ModelBuilder::addFriction(std::unique_ptr<LuGreFriction> friction)
+{
+  model_.frictions_.push_back(friction.get());
+  model_.items_.push_back(std::move(friction));
 }
 
 const Body *Model::findBody(const std::string &name) const

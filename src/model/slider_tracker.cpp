@@ -17,8 +17,8 @@ PetscErrorCode SliderTracker::setUp(Vec layout)
 {
   PetscFunctionBeginUser;
   std::vector<PetscInt> idx;
-  for (const auto &j : assembler_.model().slidingJoints()) idx.push_back(j->slackIndex());
-  // Every rank receives every slack value, so that all ranks take the same decisions.
+  for (const PostStepHook &h : assembler_.model().postStepHooks()) idx.insert(idx.end(), h.watched.begin(), h.watched.end());
+  // Every rank receives every watched value, so that all ranks take the same decisions.
   IS is;
   PetscCall(ISCreateGeneral(PETSC_COMM_SELF, static_cast<PetscInt>(idx.size()), idx.data(), PETSC_COPY_VALUES, &is));
   PetscCall(VecCreateSeq(PETSC_COMM_SELF, static_cast<PetscInt>(idx.size()), &slacks_));
@@ -29,30 +29,23 @@ PetscErrorCode SliderTracker::setUp(Vec layout)
 
 PetscErrorCode SliderTracker::update(Vec x, double t, bool *relocated, std::string *offTrack)
 {
-  const PetscScalar *s;
+  const PetscScalar *values;
   PetscFunctionBeginUser;
   *relocated = false;
   offTrack->clear();
   if (!active()) PetscFunctionReturn(0);
   PetscCall(VecScatterBegin(scatter_, x, slacks_, INSERT_VALUES, SCATTER_FORWARD));
   PetscCall(VecScatterEnd(scatter_, x, slacks_, INSERT_VALUES, SCATTER_FORWARD));
-  PetscCall(VecGetArrayRead(slacks_, &s));
-  const auto &joints = assembler_.model().slidingJoints();
-  for (std::size_t k = 0; k < joints.size(); ++k) {
-    if (!joints[k]->onTrack(s[k])) {
-      std::ostringstream os;
-      os << "sliding joint '" << joints[k]->name() << "' left its track '" << joints[k]->track().name()
-         << "' at t = " << t << " s (s = " << s[k] << " m, track length " << joints[k]->track().length() << " m)";
-      *offTrack = os.str();
-      break;
-    }
-    if (joints[k]->relocate(s[k])) {
-      *relocated = true;
-      PetscCall(PetscInfo(nullptr, "t = %g s: sliding joint '%s' moves to element %d of '%s' (s = %.12g m)\n", t,
-                          joints[k]->name().c_str(), joints[k]->trackLocation().element, joints[k]->track().name().c_str(), s[k]));
-    }
+  PetscCall(VecGetArrayRead(slacks_, &values));
+  std::size_t offset = 0;
+  for (const PostStepHook &h : assembler_.model().postStepHooks()) {
+    bool changed = false;
+    PetscCall(h.afterStep(values + offset, t, &changed, offTrack));
+    offset += h.watched.size();
+    if (!offTrack->empty()) break;
+    *relocated = *relocated || changed;
   }
-  PetscCall(VecRestoreArrayRead(slacks_, &s));
+  PetscCall(VecRestoreArrayRead(slacks_, &values));
   if (*relocated && offTrack->empty()) PetscCall(assembler_.rebuildPattern());
   PetscFunctionReturn(0);
 }
@@ -60,18 +53,18 @@ PetscErrorCode SliderTracker::update(Vec x, double t, bool *relocated, std::stri
 std::vector<double> SliderTracker::locations() const
 {
   std::vector<double> s;
-  for (const auto &j : assembler_.model().slidingJoints()) s.push_back(j->trackLocation().s);
+  for (const PostStepHook &h : assembler_.model().postStepHooks()) s.push_back(h.location());
   return s;
 }
 
 PetscErrorCode SliderTracker::setLocations(const std::vector<double> &s)
 {
   PetscFunctionBeginUser;
-  const auto &joints = assembler_.model().slidingJoints();
-  PetscCheck(s.size() == joints.size(), assembler_.comm(), PETSC_ERR_FILE_UNEXPECTED,
-             "restart file has %zu sliding joint locations, the scene %zu", s.size(), joints.size());
-  for (std::size_t k = 0; k < joints.size(); ++k) joints[k]->setTrackLocation(s[k]);
-  if (!joints.empty()) PetscCall(assembler_.rebuildPattern());
+  const auto &hooks = assembler_.model().postStepHooks();
+  PetscCheck(s.size() == hooks.size(), assembler_.comm(), PETSC_ERR_FILE_UNEXPECTED,
+             "restart file has %zu sliding joint locations, the scene %zu", s.size(), hooks.size());
+  for (std::size_t k = 0; k < hooks.size(); ++k) hooks[k].setLocation(s[k]);
+  if (!hooks.empty()) PetscCall(assembler_.rebuildPattern());
   PetscFunctionReturn(0);
 }
 

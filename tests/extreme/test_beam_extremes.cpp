@@ -91,7 +91,7 @@ TEST(LargeDeflection, StaticTipLoadUpToFiftyMatchesElastica)
     std::string text = cantilever(EA, "static", tail);
     text.replace(text.find("elements: 16"), 12, "elements: 32");
     Scene scene = parseScene(text, "elastica.yaml");
-    scene.forces[0].force = {0, -k * kEI / (kL * kL)};
+    scene.forces[0].set("force", Vec2d{0, -k * kEI / (kL * kL)});
     const StaticOutcome out = runStatic(scene);
     ASSERT_TRUE(out.converged) << "PL^2/EI = " << k;
     if (rank()) continue;

@@ -20,9 +20,9 @@ constexpr int kDriveRow = 11, kJ2 = 1;
 Scene extraction(double distance, double speed, double tEnd, double h, int elements = 16)
 {
   Scene scene = inputScene("paper_extraction.yaml");
-  for (ConstraintSpec &c : scene.constraints)
-    if (c.type == ConstraintSpec::Type::ExtractionDrive)
-      c.displacement = TimeFunction::ramp(0.1, 0.1 + std::abs(distance) / speed, 0.0, distance);
+  for (ComponentSpec &c : scene.constraints)
+    if (c.type == "extraction_drive")
+      c.set("displacement", TimeFunction::ramp(0.1, 0.1 + std::abs(distance) / speed, 0.0, distance));
   for (BodySpec &b : scene.bodies) b.elements = elements;
   scene.dynamic.t_end = tEnd;
   scene.dynamic.dt = h;
@@ -38,7 +38,7 @@ struct Extremes {
 Extremes measure(const DynamicHistory &run, const Scene &scene, double elementLength)
 {
   Extremes e;
-  const TimeFunction &d = scene.constraints[5].displacement;
+  const TimeFunction &d = scene.constraints[5].function("displacement");
   const std::vector<double> res = energyResidual(run, kDriveRow, kJ2);
   e.created = maxPositive(res);
   e.violation = maxOf(run.violation);
@@ -105,7 +105,7 @@ TEST(FastExtraction, PastTheBoomEndStopsWithTheJointAndTrack)
   // Faster (7.6 m/s, a ramp over 0.25 s): j3 leaves boom 3 first, a step
   // before the overlap closes: "left its track".
   Scene faster = scene;
-  faster.constraints[5].displacement = TimeFunction::ramp(0.1, 0.35, 0.0, 1.9);
+  faster.constraints[5].set("displacement", TimeFunction::ramp(0.1, 0.35, 0.0, 1.9));
   const DynamicHistory off = runDynamic(faster);
   ASSERT_FALSE(off.summary.completed);
   PetscPrintf(PETSC_COMM_WORLD, "  7.6 m/s, 1.9 m: %s\n", off.summary.failure.c_str());
@@ -171,8 +171,11 @@ TEST(StiffBristles, StickSlipSceneWithSigma0UpTo1e7)
   std::vector<double> onset;
   for (double sigma0 : {1e5, 1e7}) {
     Scene scene = inputScene("paper_stick_slip.yaml");
-    for (ConstraintSpec &c : scene.constraints)
-      if (c.friction) c.friction->sigma0 = sigma0;
+    for (ComponentSpec &c : scene.constraints)
+      if (c.has("friction")) {
+        ComponentSpec friction = c.map("friction");
+        c.set("friction", friction.set("sigma0", sigma0));
+      }
     scene.dynamic.t_end = 7.0;
     const DynamicHistory run = runDynamic(scene);
     ASSERT_TRUE(run.summary.completed) << "sigma0 = " << sigma0 << ": " << run.summary.failure;

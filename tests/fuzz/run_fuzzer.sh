@@ -4,8 +4,13 @@
 #   tests/fuzz/run_fuzzer.sh [SOURCE_DIR [BUILD_DIR]]        (CTest: fuzz.scene_parser)
 #
 # (a) builds BUILD_DIR/fuzz/scene_fuzzer with clang++ -fsanitize=fuzzer,address,undefined
-#     from the reader's own sources (scene_reader.cpp, time_function.cpp, yaml-cpp;
-#     no PETSc, no MPI), unless it is newer than every source it depends on;
+#     from the reader's own sources and the physics types whose schemas it reads
+#     (src/io/{scene_reader,checked_yaml,component_reader}.cpp, the registry, every
+#     file that defines a PhysicsType, time_function.cpp), all
+#     instrumented; the types' builders need the kernels, which come uninstrumented
+#     from BUILD_DIR/libboomdyn_core.a (build it first) with PETSc and MPI linked
+#     but never initialized: the reader does not call a builder. Rebuilt when
+#     any source it depends on is newer than the executable;
 # (b) runs it for FUZZ_TIME seconds (default 60) on the seeds (inputs/*.yaml,
 #     tests/bad_input/*.yaml, tests/bad_model/*.yaml, tests/fuzz/seeds/*.yaml:
 #     valid scenes with the features the examples lack) plus the corpus kept in
@@ -34,9 +39,19 @@ exe=$dir/scene_fuzzer
 mkdir -p "$dir/corpus" "$dir/artifacts"
 
 # (a) build if any dependency is newer than the executable
-deps=("$src/tests/fuzz/scene_fuzzer.cpp" "$src/tests/fuzz/run_fuzzer.sh" "$src/src/io/scene_reader.cpp"
-      "$src/src/model/time_function.cpp" "$src/include/boomdyn/scene_reader.hpp" "$src/include/boomdyn/scene.hpp"
-      "$src/include/boomdyn/time_function.hpp")
+reader_sources=("$src/src/io/scene_reader.cpp" "$src/src/io/checked_yaml.cpp" "$src/src/io/component_reader.cpp"
+                "$src/src/model/time_function.cpp" "$src/src/model/scene.cpp"
+                "$src/src/model/component_spec.cpp" "$src/src/model/physics_types.cpp")
+# Every file that defines a physics type (its schema is what the reader reads).
+mapfile -t type_sources < <(grep -l '^PhysicsType [A-Za-z]*Type()' "$src/src"/*/*.cpp)
+reader_sources+=("${type_sources[@]}")
+core=$build/libboomdyn_core.a
+if [ ! -f "$core" ]; then
+  echo "fuzz: $core not found: build the boomdyn_core target first"
+  exit 1
+fi
+deps=("$src/tests/fuzz/scene_fuzzer.cpp" "$src/tests/fuzz/run_fuzzer.sh" "${reader_sources[@]}" "$core"
+      "$src/include/boomdyn"/*.hpp "$src/src/io/checked_yaml.hpp")
 stale=0
 [ -x "$exe" ] || stale=1
 for d in "${deps[@]}"; do [ "$d" -nt "$exe" ] && stale=1; done
@@ -45,8 +60,9 @@ if [ $stale -eq 1 ]; then
   # -fno-sanitize-recover: a UBSan report stops the run (by default it only prints).
   if ! "$cxx" -std=c++17 -g -O1 -fno-omit-frame-pointer \
        -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=all \
-       -I"$src/include" "$src/tests/fuzz/scene_fuzzer.cpp" "$src/src/io/scene_reader.cpp" \
-       "$src/src/model/time_function.cpp" $(pkg-config --cflags --libs yaml-cpp 2> /dev/null || echo -lyaml-cpp) \
+       -I"$src/include" $(pkg-config --cflags petsc eigen3 mpi-cxx yaml-cpp) \
+       "$src/tests/fuzz/scene_fuzzer.cpp" "${reader_sources[@]}" "$core" \
+       $(pkg-config --libs slepc petsc hdf5 yaml-cpp mpi-cxx) -lmetis \
        -o "$exe.tmp" > "$dir/build.log" 2>&1; then
     cat "$dir/build.log"
     echo "fuzz: FAILED to build the fuzzer (is libclang-rt-14-dev installed? scripts/install-deps.sh)"

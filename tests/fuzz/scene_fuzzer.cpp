@@ -25,6 +25,7 @@
 #include <cstdlib>
 #include <exception>
 #include <string>
+#include <variant>
 
 namespace {
 
@@ -91,11 +92,11 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
   const std::string text(reinterpret_cast<const char *>(data), size);
   try {
     const boomdyn::Scene scene = boomdyn::parseScene(text, kLabel);
-    for (const auto &c : scene.constraints) {
-      exercise(c.angle);
-      exercise(c.displacement);
-    }
-    for (const auto &f : scene.forces) exercise(f.scale);
+    // Every time function of every component (angles, displacements, scales).
+    for (const std::string &section : boomdyn::Scene::componentSections())
+      for (const auto &c : scene.components(section))
+        for (const auto &[key, value] : c.values)
+          if (const auto *f = std::get_if<boomdyn::TimeFunction>(&value)) exercise(*f);
   } catch (const boomdyn::SceneError &e) {
     checkMessage(e.what(), text);
   } catch (const std::exception &e) {

@@ -92,7 +92,7 @@ std::vector<double> trackedAlongExtraction(MPI_Comm comm)
 {
   Scene scene = readSceneFile(std::string(BOOMDYN_SOURCE_DIR) + "/inputs/paper_extraction.yaml");
   for (auto &c : scene.constraints)
-    if (c.type == ConstraintSpec::Type::ExtractionDrive) c.displacement = TimeFunction::smoothStep(0.0, 0.4, 0.0, 0.4);
+    if (c.type == "extraction_drive") c.set("displacement", TimeFunction::smoothStep(0.0, 0.4, 0.0, 0.4));
   scene.dynamic.t_end = 0.4;
   Model model(scene);
   Assembler assembler(model);

@@ -3,6 +3,7 @@
 // states, with the material point inside an element and on an element boundary.
 #include "boomdyn/ancf_beam.hpp"
 #include "boomdyn/angle_drive.hpp"
+#include "boomdyn/distance.hpp"
 #include "boomdyn/pin.hpp"
 #include "boomdyn/rigid_body.hpp"
 #include "boomdyn/rope.hpp"
@@ -181,6 +182,33 @@ TEST(RopeConstraint, DerivativesMatchFiniteDifferencesOnBeamsAndRigidBodies)
   std::vector<PetscInt> dofs;
   rope.coordinates(dofs);
   EXPECT_EQ(dofs.size(), 19u);
+}
+
+// Distance: to a ground point and between bodies, on beams (material point
+// inside an element and on a node) and on rigid bodies (curvature terms).
+TEST(DistanceConstraint, DerivativesMatchFiniteDifferencesOnBeamsAndRigidBodies)
+{
+  AncfBeam beam("beam", 2.0, 4, kSection, Vec2(0.1, 0.2), 0.4, 0);
+  RigidBody bar("bar", 1.5, 10.0, Vec2(-0.5, 1.0), 0.3, 20);
+  std::vector<double> q0(23);
+  beam.initialCoordinates(q0.data());
+  bar.initialCoordinates(q0.data() + 20);
+  for (const double s : {0.3, 1.0, 2.0}) {
+    checkConstraint(Distance("to-ground", beam, s, Vec2(1.5, -0.7), 1.2), q0, 51);
+    checkConstraint(Distance("beam-bar", beam, s, bar, 1.1, 0.9), q0, 52);
+    checkConstraint(Distance("bar-beam", bar, 0.2, beam, s, 0.9), q0, 53);
+  }
+  checkConstraint(Distance("bar-to-ground", bar, 1.4, Vec2(0.3, 0.2), 1.0), q0, 54);
+  // C = |d| - L at the initial state, and one row over both bodies' points.
+  const Distance link("link", beam, 2.0, Vec2(0.1, 0.2), 1.0);
+  std::vector<PetscInt> dofs;
+  link.coordinates(dofs);
+  std::vector<double> vals;
+  for (PetscInt d : dofs) vals.push_back(q0[d]);
+  EXPECT_NEAR(link.distance(vals.data()), 2.0, 1e-14); // the beam's end is 2 m from its start
+  ConstraintEval ev;
+  link.evaluate(0.0, vals.data(), nullptr, nullptr, ev);
+  EXPECT_NEAR(ev.C[0], 1.0, 1e-14);
 }
 
 // A contact point keeps its track element until it is more than

@@ -212,59 +212,59 @@ output:
   EXPECT_EQ(hook.section.EA, 0.0);
 
   ASSERT_EQ(s.constraints.size(), 4u);
-  const ConstraintSpec &clamp = s.constraints[0];
-  EXPECT_EQ(clamp.type, ConstraintSpec::Type::Clamp);
+  const ComponentSpec &clamp = s.constraints[0];
+  EXPECT_EQ(clamp.type, "clamp");
   EXPECT_EQ(clamp.name, "clamp0"); // default "<type><index>"
-  EXPECT_EQ(clamp.a.body, "boom");
-  EXPECT_EQ(clamp.a.s, 0.0);
-  EXPECT_FALSE(clamp.b.has_value());
-  EXPECT_EQ(clamp.ground, (Vec2d{1, 0.5})); // default: the body's start point
-  EXPECT_EQ(clamp.angle.kind(), TimeFunction::Kind::SmoothStep);
-  EXPECT_NEAR(clamp.angle.value(0.0), 90 * kDeg, 1e-15);
-  EXPECT_NEAR(clamp.angle.value(5.7), 125 * kDeg, 1e-15);
-  EXPECT_NEAR(clamp.angle.value(100.0), 125 * kDeg, 1e-15);
+  EXPECT_EQ(clamp.text("body"), "boom");
+  EXPECT_EQ(clamp.number("at"), 0.0);
+  EXPECT_FALSE(clamp.has("other"));
+  EXPECT_EQ(clamp.vec2("point"), (Vec2d{1, 0.5})); // default: the body's start point
+  EXPECT_EQ(clamp.function("angle").kind(), TimeFunction::Kind::SmoothStep);
+  EXPECT_NEAR(clamp.function("angle").value(0.0), 90 * kDeg, 1e-15);
+  EXPECT_NEAR(clamp.function("angle").value(5.7), 125 * kDeg, 1e-15);
+  EXPECT_NEAR(clamp.function("angle").value(100.0), 125 * kDeg, 1e-15);
   EXPECT_EQ(clamp.mark.key, "constraints[0]");
   EXPECT_EQ(clamp.mark.line, 28);
 
-  const ConstraintSpec &knuckle = s.constraints[1];
-  EXPECT_EQ(knuckle.type, ConstraintSpec::Type::Pin);
+  const ComponentSpec &knuckle = s.constraints[1];
+  EXPECT_EQ(knuckle.type, "pin");
   EXPECT_EQ(knuckle.name, "knuckle");
-  EXPECT_EQ(knuckle.a.body, "jib");
-  EXPECT_EQ(knuckle.a.s, 0.0);
-  ASSERT_TRUE(knuckle.b.has_value());
-  EXPECT_EQ(knuckle.b->body, "boom");
-  EXPECT_EQ(knuckle.b->s, 2.0);
+  EXPECT_EQ(knuckle.text("body"), "jib");
+  EXPECT_EQ(knuckle.number("at"), 0.0);
+  ASSERT_TRUE(knuckle.has("other"));
+  EXPECT_EQ(knuckle.text("other"), "boom");
+  EXPECT_EQ(knuckle.number("other_at"), 2.0);
 
-  const ConstraintSpec &hang = s.constraints[2];
+  const ComponentSpec &hang = s.constraints[2];
   EXPECT_EQ(hang.name, "pin2");
-  EXPECT_EQ(hang.ground, (Vec2d{2, 2.5}));
+  EXPECT_EQ(hang.vec2("point"), (Vec2d{2, 2.5}));
 
-  const ConstraintSpec &drive = s.constraints[3];
-  EXPECT_EQ(drive.type, ConstraintSpec::Type::AngleDrive);
+  const ComponentSpec &drive = s.constraints[3];
+  EXPECT_EQ(drive.type, "angle_drive");
   EXPECT_EQ(drive.name, "angle_drive3");
-  EXPECT_EQ(drive.angle.kind(), TimeFunction::Kind::Sine);
+  EXPECT_EQ(drive.function("angle").kind(), TimeFunction::Kind::Sine);
   // 5 + 10 sin(90 deg) degrees at t = 0; amplitude and offset scaled to rad,
   // phase converted from degrees.
-  EXPECT_NEAR(drive.angle.value(0.0), 15 * kDeg, 1e-14);
-  EXPECT_NEAR(drive.angle.value(1.0), -5 * kDeg, 1e-14); // half a period later
+  EXPECT_NEAR(drive.function("angle").value(0.0), 15 * kDeg, 1e-14);
+  EXPECT_NEAR(drive.function("angle").value(1.0), -5 * kDeg, 1e-14); // half a period later
 
   ASSERT_EQ(s.forces.size(), 2u);
   EXPECT_EQ(s.forces[0].name, "wind");
-  EXPECT_EQ(s.forces[0].at.s, 1.0);
-  EXPECT_EQ(s.forces[0].force, (Vec2d{100, 0}));
-  EXPECT_EQ(s.forces[0].scale.kind(), TimeFunction::Kind::Table);
-  EXPECT_DOUBLE_EQ(s.forces[0].scale.value(1.5), 0.75); // not converted: dimensionless
+  EXPECT_EQ(s.forces[0].number("at"), 1.0);
+  EXPECT_EQ(s.forces[0].vec2("force"), (Vec2d{100, 0}));
+  EXPECT_EQ(s.forces[0].function("scale").kind(), TimeFunction::Kind::Table);
+  EXPECT_DOUBLE_EQ(s.forces[0].function("scale").value(1.5), 0.75); // not converted: dimensionless
   EXPECT_EQ(s.forces[1].name, "force1");
-  EXPECT_EQ(s.forces[1].at.s, 1.5);
-  EXPECT_EQ(s.forces[1].scale.value(3.0), 1.0);
+  EXPECT_EQ(s.forces[1].number("at"), 1.5);
+  EXPECT_EQ(s.forces[1].function("scale").value(3.0), 1.0);
 
   ASSERT_EQ(s.masses.size(), 2u);
   EXPECT_EQ(s.masses[0].name, "payload");
-  EXPECT_EQ(s.masses[0].at.body, "hook");
-  EXPECT_EQ(s.masses[0].at.s, 0.5);
-  EXPECT_EQ(s.masses[0].mass, 250.0);
+  EXPECT_EQ(s.masses[0].text("body"), "hook");
+  EXPECT_EQ(s.masses[0].number("at"), 0.5);
+  EXPECT_EQ(s.masses[0].number("mass"), 250.0);
   EXPECT_EQ(s.masses[1].name, "mass1");
-  EXPECT_EQ(s.masses[1].at.s, 0.25);
+  EXPECT_EQ(s.masses[1].number("at"), 0.25);
 
   EXPECT_EQ(s.dynamic.t_end, 2.0);
   EXPECT_EQ(s.dynamic.dt, 1e-3);
@@ -276,9 +276,9 @@ output:
   EXPECT_EQ(s.output.state_interval, 0.05);
   ASSERT_EQ(s.output.sensors.size(), 2u);
   EXPECT_EQ(s.output.sensors[0].name, "tip");
-  EXPECT_EQ(s.output.sensors[0].at.s, 1.0);
+  EXPECT_EQ(s.output.sensors[0].number("at"), 1.0);
   EXPECT_EQ(s.output.sensors[1].name, "sensor1");
-  EXPECT_EQ(s.output.sensors[1].at.body, "boom");
+  EXPECT_EQ(s.output.sensors[1].text("body"), "boom");
 }
 
 TEST(SceneReader, ClampAngleDefaultsToBodyAngleAndGroundToMaterialPoint)
@@ -298,11 +298,55 @@ constraints:
     at: 1.0
 )";
   const Scene s = parseScene(text, "t.yaml");
-  const ConstraintSpec &c = s.constraints.at(0);
-  EXPECT_NEAR(c.ground[0], 1 + std::cos(30 * kDeg), 1e-15);
-  EXPECT_NEAR(c.ground[1], 1 + std::sin(30 * kDeg), 1e-15);
-  EXPECT_EQ(c.angle.kind(), TimeFunction::Kind::Constant);
-  EXPECT_NEAR(c.angle.value(0), 30 * kDeg, 1e-15);
+  const ComponentSpec &c = s.constraints.at(0);
+  EXPECT_NEAR(c.vec2("point")[0], 1 + std::cos(30 * kDeg), 1e-15);
+  EXPECT_NEAR(c.vec2("point")[1], 1 + std::sin(30 * kDeg), 1e-15);
+  EXPECT_EQ(c.function("angle").kind(), TimeFunction::Kind::Constant);
+  EXPECT_NEAR(c.function("angle").value(0), 30 * kDeg, 1e-15);
+}
+
+TEST(SceneReader, DistanceConstraintBetweenBodiesAndToGround)
+{
+  const std::string bodies = std::string(kMinimal) + R"(  - name: jib
+    length: 1
+    elements: 2
+    origin: [2, 0]
+    section: {EA: 1, EI: 1, rhoA: 1}
+constraints:
+)";
+  const Scene s = parseScene(bodies + R"(  - {type: distance, name: stay, body: boom, at: 1, other: jib, other_at: end}
+  - {type: distance, body: jib, at: 0.5, point: [2, 3], length: 3.2}
+)",
+                             "t.yaml");
+  ASSERT_EQ(s.constraints.size(), 2u);
+  const ComponentSpec &stay = s.constraints[0];
+  EXPECT_EQ(stay.type, "distance");
+  EXPECT_EQ(stay.name, "stay");
+  EXPECT_EQ(stay.text("body"), "boom");
+  EXPECT_EQ(stay.number("at"), 1.0);
+  EXPECT_EQ(stay.text("other"), "jib");
+  EXPECT_EQ(stay.number("other_at"), 1.0); // `end` of the 1 m jib
+  EXPECT_FALSE(stay.has("length"));         // the builder takes the initial distance
+  const ComponentSpec &ground = s.constraints[1];
+  EXPECT_EQ(ground.name, "distance1");
+  EXPECT_EQ(ground.vec2("point"), (Vec2d{2, 3}));
+  EXPECT_EQ(ground.number("length"), 3.2);
+
+  // The schema's rules, with the file:line: key messages of every type.
+  expectRejected(bodies + "  - {type: distance, body: boom, at: 1, other: jib, other_at: 0, point: [0, 0]}\n", 14,
+                 "constraints[0].point", "not allowed together with 'other' (the link joins two bodies)");
+  expectRejected(bodies + "  - {type: distance, body: boom, at: 1}\n", 14, "constraints[0].point",
+                 "missing required key");
+  expectRejected(bodies + "  - {type: distance, body: boom, at: 1, point: [0, 0], other_at: 0}\n", 14,
+                 "constraints[0].other_at", "only allowed together with 'other'");
+  expectRejected(bodies + "  - {type: distance, body: boom, at: 1, point: [0, 0], length: 0}\n", 14,
+                 "constraints[0].length", "must be > 0 (got 0)");
+  expectRejected(bodies + "  - {type: distance, body: boom, at: 1, point: [0, 0], angle: 3}\n", 14,
+                 "constraints[0].angle", "not allowed for a distance");
+  expectRejected(bodies + "  - {type: distance, body: boom, at: 1, point: [0, 0], track: jib}\n", 14,
+                 "constraints[0].track", "only allowed for a sliding_joint");
+  expectRejected(bodies + "  - {type: pin, body: boom, at: 1, length: 2}\n", 14, "constraints[0].length",
+                 "only allowed for a rope or a distance");
 }
 
 TEST(SceneReader, DynamicDefaultsAndDtMinFollowsSmallDt)
@@ -507,13 +551,13 @@ TEST(SceneReaderFiles, ExampleValuesMatchTheirComments)
   EXPECT_EQ(s.bodies.at(0).elements, 16);
 
   const Scene drive = readSceneFile((dir / "elevation_drive.yaml").string());
-  const TimeFunction &angle = drive.constraints.at(0).angle;
+  const TimeFunction &angle = drive.constraints.at(0).function("angle");
   EXPECT_EQ(angle.kind(), TimeFunction::Kind::SmoothStep);
   EXPECT_NEAR(angle.value(5.7), 35 * kDeg, 1e-14);
   EXPECT_EQ(angle.rate(0.0), 0.0);
 
   const Scene pinned = readSceneFile((dir / "two_beams_pinned.yaml").string());
-  ASSERT_TRUE(pinned.constraints.at(1).b.has_value());
+  ASSERT_TRUE(pinned.constraints.at(1).has("other"));
 }
 
 // Each bad file starts with "# expect: <substring>"; an optional second line

@@ -34,28 +34,19 @@ Scene sleeveScene(int elements, double dt)
   sleeve.elements = 1;
   sleeve.section = {1.0e9, 1.0e7, 10.0};
   sc.bodies = {rod, sleeve};
-  ConstraintSpec clamp;
-  clamp.type = ConstraintSpec::Type::Clamp;
-  clamp.name = "sleeve_clamp";
-  clamp.a = {"sleeve", 0.0};
-  ConstraintSpec rear, front, drive;
-  rear.type = front.type = ConstraintSpec::Type::SlidingJoint;
-  rear.name = "rear";
-  rear.a = {"sleeve", 0.0};
-  rear.track = "rod";
-  front.name = "front";
-  front.a = {"sleeve", 0.25};
-  front.track = "rod";
-  drive.type = ConstraintSpec::Type::ExtractionDrive;
-  drive.name = "push";
-  drive.joint = "rear";
+  ComponentSpec clamp("clamp", "sleeve_clamp");
+  clamp.set("body", "sleeve").set("at", 0.0).set("point", Vec2d{0.0, 0.0}).set("angle", TimeFunction::constant(0.0));
+  ComponentSpec rear("sliding_joint", "rear"), front("sliding_joint", "front"), drive("extraction_drive", "push");
+  rear.set("body", "sleeve").set("at", 0.0).set("track", "rod");
+  front.set("body", "sleeve").set("at", 0.25).set("track", "rod");
+  drive.set("joint", "rear");
   // s of the rear pad grows: the rod moves backwards (-x) through the sleeve.
-  drive.displacement = TimeFunction::ramp(0.0, kEnd, 0.0, kSpeed * kEnd);
+  drive.set("displacement", TimeFunction::ramp(0.0, kEnd, 0.0, kSpeed * kEnd));
   sc.constraints = {clamp, rear, front, drive};
   sc.dynamic.t_end = kEnd;
   sc.dynamic.dt = dt;
   sc.dynamic.rho_inf = 0.8;
-  sc.output.sensors = {{"tip", {"rod", 2.0}}};
+  sc.output.sensors = {ComponentSpec("point_sensor", "tip").set("body", "rod").set("at", 2.0)};
   return sc;
 }
 
@@ -152,7 +143,7 @@ TEST(SlidingJoint, SliderLeavingItsTrackStopsTheRunWithAMessage)
   // Push 2 m/s for 1 s: the front pad (starting at s = 0.65 m) reaches the
   // rod's end (s = 2 m) near t = 0.68 s.
   Scene scene = sleeveScene(16, 2e-3);
-  scene.constraints.back().displacement = TimeFunction::ramp(0.0, 1.0, 0.0, 2.0);
+  scene.constraints.back().set("displacement", TimeFunction::ramp(0.0, 1.0, 0.0, 2.0));
   scene.dynamic.t_end = 1.0;
   const DynamicHistory run = runDynamic(scene);
   EXPECT_FALSE(run.summary.completed);

@@ -36,7 +36,7 @@ TEST(Telescope, RopeMakesBoomThreeExtendAsBoomTwo)
   scene.forces.clear();
   scene.dynamic.t_end = 2.0;
   for (auto &c : scene.constraints)
-    if (c.type == ConstraintSpec::Type::ExtractionDrive) c.displacement = TimeFunction::smoothStep(0.0, 2.0, 0.0, 1.0);
+    if (c.type == "extraction_drive") c.set("displacement", TimeFunction::smoothStep(0.0, 2.0, 0.0, 1.0));
   for (auto &b : scene.bodies) b.type = BodySpec::Type::Rigid;
   scene.dynamic.dt = 2e-3;
   const DynamicHistory run = runDynamic(scene);
@@ -57,7 +57,7 @@ TEST(Telescope, LoadedExtractionRunsWithSmallViolation)
   Scene scene = paperScene();
   for (auto &b : scene.bodies) b.elements = 8;
   for (auto &c : scene.constraints)
-    if (c.type == ConstraintSpec::Type::ExtractionDrive) c.displacement = TimeFunction::smoothStep(0.0, 1.0, 0.0, 0.6);
+    if (c.type == "extraction_drive") c.set("displacement", TimeFunction::smoothStep(0.0, 1.0, 0.0, 0.6));
   scene.dynamic.t_end = 1.0;
   const DynamicHistory run = runDynamic(scene);
   ASSERT_TRUE(run.summary.completed) << run.summary.failure;

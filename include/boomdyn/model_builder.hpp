@@ -1,0 +1,64 @@
+// What a physics type's builder may do to the Model under construction
+// (physics_type.hpp): look up bodies and the initial coordinates, number
+// new coordinates and first-order states, add constraints, work items,
+// sensors, output channels and post-step hooks. The Model creates one
+// ModelBuilder after its bodies and hands it to every type, stage by stage.
+#pragma once
+
+#include "boomdyn/model.hpp"
+
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace boomdyn {
+
+class ModelBuilder {
+public:
+  explicit ModelBuilder(Model &model) : model_(model), q0_(model.initialCoordinates()) {}
+
+  // "<file>:<line>: key '<key>': ", the start of a ModelError message about a component.
+  static std::string where(const SourceMark &mark)
+  {
+    return mark.file + ":" + std::to_string(mark.line) + ": key '" + mark.key + "': ";
+  }
+
+  const Scene &scene() const { return model_.scene_; }
+  Vec2 gravity() const { return Vec2(model_.scene_.gravity[0], model_.scene_.gravity[1]); }
+  // Throws ModelError for an unknown name (the reader has checked names).
+  const Body &body(const std::string &name) const { return *model_.findBody(name); }
+  // Initial coordinates of the bodies (undeformed, as placed).
+  const std::vector<double> &bodyCoordinates() const { return q0_; }
+
+  // Coordinates numbered so far (final in the build stage).
+  PetscInt numCoordinates() const { return model_.nq_; }
+  // A new second-order coordinate (after the bodies'), starting at initial.
+  PetscInt addCoordinate(double initial);
+  // A new first-order state (LuGre z) of the friction at joint `joint`.
+  PetscInt addFirstOrderState(const std::string &joint);
+  // Multiplier rows follow all coordinates: call in the build stage only.
+  const ConstraintItem &addConstraint(std::shared_ptr<Constraint> c, const SourceMark &mark);
+  void addItem(std::unique_ptr<WorkItem> item) { model_.items_.push_back(std::move(item)); }
+  void addSlidingJoint(std::shared_ptr<SlidingJoint> joint) { model_.slidingJoints_.push_back(std::move(joint)); }
+  void addFriction(std::unique_ptr<LuGreFriction> friction);
+  void addSensor(Sensor sensor) { model_.sensors_.push_back(std::move(sensor)); }
+  void addFrameSensor(FrameSensor frame) { model_.frameSensors_.push_back(std::move(frame)); }
+  void addOutputChannel(OutputChannel channel) { model_.outputChannels_.push_back(std::move(channel)); }
+  void addPostStepHook(PostStepHook hook) { model_.postStepHooks_.push_back(std::move(hook)); }
+
+  // Numbers a type keeps between its stages, or hands to a later component
+  // (an extraction drive reads its sliding joint's slack coordinate), keyed
+  // by the component's type and name (unique together).
+  std::map<std::string, double> &scratch(const std::string &type, const std::string &name)
+  {
+    return scratch_[type + "/" + name];
+  }
+
+private:
+  Model &model_;
+  std::vector<double> q0_;
+  std::map<std::string, std::map<std::string, double>> scratch_;
+};
+
+} // namespace boomdyn

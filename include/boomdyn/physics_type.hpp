@@ -1,0 +1,64 @@
+// The registry of physics types. A type (pin, rope, point_mass, ...) is one
+// file that fills a PhysicsType: its scene schema, derived defaults and
+// cross-checks, and its builder into the Model, in three stages so that all
+// coordinates are numbered before the first-order states and those before
+// the multiplier rows. The list of all types is src/model/physics_types.cpp
+// (one registration line per type).
+//
+// A plain C++ registry, not PetscFunctionList: the scene reader, the schema
+// printer and the fuzzer run without PETSc initialized, and the registry is
+// a constant table built on first use.
+#pragma once
+
+#include "boomdyn/scene.hpp"
+#include "boomdyn/schema.hpp"
+
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace boomdyn {
+
+class ModelBuilder;
+
+// A problem found by a type's cross-check: the key (relative to the
+// component, "friction.mu_c" for nested ones) and the reason.
+struct SpecIssue {
+  std::string key;
+  std::string reason;
+};
+
+struct PhysicsType {
+  TypeSchema schema;
+  // Derived defaults that need the rest of the scene (a clamp's ground point
+  // is where its body starts). Fills only absent keys.
+  void (*complete)(ComponentSpec &spec, const Scene &scene) = nullptr;
+  // Checks the schema cannot express, on the completed spec; scene holds the
+  // components listed before this one.
+  std::optional<SpecIssue> (*check)(const ComponentSpec &spec, const Scene &scene) = nullptr;
+  // Model construction: extra coordinates, then first-order states, then
+  // constraints, work items, sensors, outputs and hooks.
+  void (*addCoordinates)(const ComponentSpec &spec, ModelBuilder &builder) = nullptr;
+  void (*addStates)(const ComponentSpec &spec, ModelBuilder &builder) = nullptr;
+  void (*build)(const ComponentSpec &spec, ModelBuilder &builder) = nullptr;
+};
+
+// Helpers for derived defaults: the body of that name (the reader has
+// checked that it exists), and where a material point starts.
+const BodySpec &bodySpec(const Scene &scene, const std::string &name);
+Vec2d initialPoint(const Scene &scene, const PointRef &point);
+
+// Keys shared by many types: a material point named by a body and a
+// material coordinate on it.
+KeySchema bodyKey(const std::string &key, const std::string &help);
+KeySchema atKey(const std::string &key, const std::string &body, const std::string &help);
+
+// Every registered type, in registration order (the order of `type:`
+// choices in messages and of the tables in docs/scenes.md).
+const std::vector<PhysicsType> &physicsTypes();
+// The types of one section, in registration order.
+std::vector<const PhysicsType *> physicsTypesOf(const std::string &section);
+// nullptr if the section has no such type.
+const PhysicsType *findPhysicsType(const std::string &section, const std::string &type);
+
+} // namespace boomdyn

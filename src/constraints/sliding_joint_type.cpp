@@ -1,0 +1,178 @@
+// Type `sliding_joint` (section constraints): a material point of the
+// slider body moves along the centerline of the track body. Adds the slack
+// (contact) coordinate s, optionally LuGre friction with its bristle state
+// z, and a post-step hook that moves the contact point to the track element
+// that holds s (or stops the run when the slider leaves its track).
+#include "boomdyn/lugre_friction.hpp"
+#include "boomdyn/model_builder.hpp"
+#include "boomdyn/physics_type.hpp"
+#include "boomdyn/sliding_joint.hpp"
+
+#include <sstream>
+
+namespace boomdyn {
+
+namespace {
+
+std::string fmt(double x)
+{
+  std::ostringstream out;
+  out.precision(10);
+  out << x;
+  return out.str();
+}
+
+// LuGre parameters (model.md §3); the defaults are FrictionSpec's.
+const TypeSchema &frictionSchema()
+{
+  static const TypeSchema schema = [] {
+    const FrictionSpec d;
+    TypeSchema s;
+    s.section = "constraints";
+    s.type = "friction";
+    s.summary = "LuGre friction at a sliding joint (the map under a sliding_joint's `friction` key).";
+    s.keys = {
+        key("mu_s", ValueKind::Number, "", Need::Required, "static friction coefficient").positive(),
+        key("mu_c", ValueKind::Number, "", Need::Required, "kinetic (Coulomb) friction coefficient, <= mu_s")
+            .positive(),
+        key("v_s", ValueKind::Number, "m/s", Need::Optional, "Stribeck velocity").positive().byDefault(d.v_s),
+        key("alpha", ValueKind::Number, "", Need::Optional, "Stribeck exponent").positive().byDefault(d.alpha),
+        key("sigma0", ValueKind::Number, "1/m", Need::Optional, "bristle stiffness per unit normal force")
+            .positive()
+            .byDefault(d.sigma0),
+        key("sigma1", ValueKind::Number, "s/m", Need::Optional, "bristle damping per unit normal force")
+            .nonNegative()
+            .byDefault(d.sigma1),
+        key("sigma2", ValueKind::Number, "N s/m", Need::Optional, "viscous friction").nonNegative().byDefault(d.sigma2),
+        key("stick_velocity", ValueKind::Number, "m/s", Need::Optional,
+            "relative speed below which the output counts the joint as sticking")
+            .positive()
+            .derived("v_s / 10"),
+    };
+    return s;
+  }();
+  return schema;
+}
+
+std::optional<SpecIssue> checkSlidingJoint(const ComponentSpec &spec, const Scene &)
+{
+  if (!spec.has("friction")) return std::nullopt;
+  const ComponentSpec &f = spec.map("friction");
+  if (f.number("mu_c") > f.number("mu_s"))
+    return SpecIssue{"friction.mu_c", "must be <= mu_s (" + fmt(f.number("mu_s")) + "): kinetic friction above static"};
+  return std::nullopt;
+}
+
+FrictionSpec frictionOf(const ComponentSpec &f)
+{
+  FrictionSpec fr;
+  fr.mu_s = f.number("mu_s");
+  fr.mu_c = f.number("mu_c");
+  fr.v_s = f.number("v_s");
+  fr.alpha = f.number("alpha");
+  fr.sigma0 = f.number("sigma0");
+  fr.sigma1 = f.number("sigma1");
+  fr.sigma2 = f.number("sigma2");
+  fr.stick_velocity = f.numberOr("stick_velocity", fr.v_s / 10);
+  return fr;
+}
+
+// The slack coordinate starts where the slider point projects onto the
+// (straight) initial track.
+void addSlack(const ComponentSpec &spec, ModelBuilder &b)
+{
+  const Body &track = b.body(spec.text("track")), &slider = b.body(spec.text("body"));
+  const double at = spec.number("at");
+  const std::vector<double> &q0 = b.bodyCoordinates();
+  CenterlineSample origin, point;
+  const CenterlineLocation l0 = track.locate(0.0), lp = slider.locate(at);
+  std::vector<double> v0(8), vp(8);
+  for (int i = 0; i < 8; ++i) v0[i] = q0[l0.dofs[i]], vp[i] = q0[lp.dofs[i]];
+  track.sample(l0, 0.0, v0.data(), origin);
+  slider.sample(lp, at, vp.data(), point);
+  const double s0 = (point.r[0] - origin.r[0]).dot(origin.r[1].normalized());
+  if (s0 < 0.0 || s0 > track.length()) {
+    std::ostringstream os;
+    os << ModelBuilder::where(spec.mark) << "sliding joint '" << spec.name << "': the slider point lies outside its track '"
+       << track.name() << "' (at s = " << s0 << " m of " << track.length() << " m)";
+    throw ModelError(os.str());
+  }
+  auto &mine = b.scratch(spec.type, spec.name);
+  mine["s0"] = s0;
+  mine["slack"] = static_cast<double>(b.addCoordinate(s0));
+}
+
+void addFrictionState(const ComponentSpec &spec, ModelBuilder &b)
+{
+  if (spec.has("friction"))
+    b.scratch(spec.type, spec.name)["z"] = static_cast<double>(b.addFirstOrderState(spec.name));
+}
+
+PostStepHook followTrack(std::shared_ptr<SlidingJoint> joint)
+{
+  PostStepHook hook;
+  hook.name = joint->name();
+  hook.watched = {joint->slackIndex()};
+  hook.afterStep = [joint](const double *s, double t, bool *changed, std::string *stop) -> PetscErrorCode {
+    PetscFunctionBeginUser;
+    if (!joint->onTrack(s[0])) {
+      std::ostringstream os;
+      os << "sliding joint '" << joint->name() << "' left its track '" << joint->track().name() << "' at t = " << t
+         << " s (s = " << s[0] << " m, track length " << joint->track().length() << " m)";
+      *stop = os.str();
+      PetscFunctionReturn(0);
+    }
+    if (joint->relocate(s[0])) {
+      *changed = true;
+      PetscCall(PetscInfo(nullptr, "t = %g s: sliding joint '%s' moves to element %d of '%s' (s = %.12g m)\n", t,
+                          joint->name().c_str(), joint->trackLocation().element, joint->track().name().c_str(), s[0]));
+    }
+    PetscFunctionReturn(0);
+  };
+  hook.location = [joint] { return joint->trackLocation().s; };
+  hook.setLocation = [joint](double s) { joint->setTrackLocation(s); };
+  return hook;
+}
+
+void buildSlidingJoint(const ComponentSpec &spec, ModelBuilder &b)
+{
+  const auto &mine = b.scratch(spec.type, spec.name);
+  auto joint = std::make_shared<SlidingJoint>(spec.name, b.body(spec.text("track")), b.body(spec.text("body")),
+                                              spec.number("at"), static_cast<PetscInt>(mine.at("slack")), mine.at("s0"));
+  b.addSlidingJoint(joint);
+  const ConstraintItem &item = b.addConstraint(joint, spec.mark);
+  if (spec.has("friction")) // lambda_n is the joint's second row
+    b.addFriction(std::make_unique<LuGreFriction>(joint, static_cast<PetscInt>(mine.at("z")), item.firstRow() + 1,
+                                                  frictionOf(spec.map("friction"))));
+  b.addPostStepHook(followTrack(joint));
+}
+
+} // namespace
+
+PhysicsType slidingJointType()
+{
+  PhysicsType t;
+  t.schema.section = "constraints";
+  t.schema.type = t.schema.defaultName = "sliding_joint";
+  t.schema.summary = "A material point of the slider body moves along the centerline of the track body; its contact "
+                     "coordinate s is an unknown. Optional LuGre friction.";
+  t.schema.keys = {
+      bodyKey("body", "the slider body"),
+      atKey("at", "body", "the slider point"),
+      key("track", ValueKind::Body, "", Need::Required, "the body the slider runs along").unlike("body"),
+      key("friction", ValueKind::Map, "", Need::Optional, "LuGre friction parameters (table below)")
+          .holding(frictionSchema())
+          .derived("frictionless"),
+  };
+  const std::string reason =
+      "not allowed for a sliding_joint (it names the slider point with body/at and the track with 'track')";
+  t.schema.rules = {forbid("point", reason), forbid("angle", reason), forbid("other", reason),
+                    forbid("other_at", reason)};
+  t.check = checkSlidingJoint;
+  t.addCoordinates = addSlack;
+  t.addStates = addFrictionState;
+  t.build = buildSlidingJoint;
+  return t;
+}
+
+} // namespace boomdyn

@@ -1,0 +1,196 @@
+// The components of a scene (constraints, loads, masses, springs, sensors)
+// read against the schemas of the registered physics types: the keys of
+// every type of the section are known (keys of a sibling type get "only
+// allowed for ..."), `type:` selects the type, then the type's rules and
+// keys are checked in schema order, its derived defaults filled and its
+// cross-checks run, all with the file:line:column: key messages of the
+// checked-YAML layer.
+#include "checked_yaml.hpp"
+
+#include "boomdyn/physics_type.hpp"
+
+#include <algorithm>
+
+namespace boomdyn::scene_io {
+
+namespace {
+
+// Sections whose items name their type with `type:`; the others hold one type.
+bool hasTypeKey(const std::string &section) { return section == "constraints" || section == "loads"; }
+
+// The noun in "duplicate <noun> name".
+std::string itemNoun(const std::string &section)
+{
+  if (section == "constraints") return "constraint";
+  if (section == "loads") return "load";
+  if (section == "masses") return "mass";
+  if (section == "springs") return "spring";
+  if (section == "output.sensors") return "sensor";
+  return "frame";
+}
+
+std::string withArticle(const std::string &word)
+{
+  return (std::string("aeiou").find(word.empty() ? 'x' : word[0]) != std::string::npos ? "an " : "a ") + word;
+}
+
+// Reads one component against its type's schema (physics_type.hpp).
+class ComponentReader : public CheckedYaml {
+public:
+  using CheckedYaml::CheckedYaml;
+  ComponentSpec parseComponent(const Field &f, std::size_t index, const std::string &section, const Scene &scene,
+                               std::map<std::string, std::string> &taken) const;
+
+private:
+  void readKeys(const MapView &m, const TypeSchema &schema, const std::vector<const PhysicsType *> &siblings,
+                const std::string &section, const Scene &scene, const std::string &prefix, ComponentSpec &spec,
+                std::map<std::string, Field> &fields) const;
+  void readValue(const Field &f, const KeySchema &k, const std::string &section, const Scene &scene,
+                 const std::string &prefix, ComponentSpec &spec, std::map<std::string, Field> &fields) const;
+};
+
+} // namespace
+
+void readComponents(const Reporter &report, const MapView &parent, const std::string &key, const std::string &section,
+                    Scene &scene)
+{
+  const ComponentReader reader(report);
+  const auto field = parent.get(key);
+  if (!field) return;
+  std::map<std::string, std::string> taken;
+  const auto items = reader.list(*field);
+  for (std::size_t i = 0; i < items.size(); ++i) {
+    // Push before the next item is read: later items may refer to earlier ones.
+    ComponentSpec spec = reader.parseComponent(items[i], i, section, scene, taken);
+    scene.components(section).push_back(std::move(spec));
+  }
+}
+
+ComponentSpec ComponentReader::parseComponent(const Field &f, std::size_t index, const std::string &section,
+                                          const Scene &scene, std::map<std::string, std::string> &taken) const
+{
+  const std::vector<const PhysicsType *> types = physicsTypesOf(section);
+  // Every key of every type of the section is known here, so that a key of
+  // a sibling type gets "only allowed for ..." rather than "unknown key".
+  std::vector<std::string> allowed{"name"}, typeNames;
+  if (hasTypeKey(section)) allowed.insert(allowed.begin(), "type");
+  for (const PhysicsType *t : types) {
+    typeNames.push_back(t->schema.type);
+    for (const KeySchema &k : t->schema.keys)
+      if (std::find(allowed.begin(), allowed.end(), k.key) == allowed.end()) allowed.push_back(k.key);
+  }
+  const MapView m(report_, f, allowed);
+  const PhysicsType *type = types.at(0);
+  if (hasTypeKey(section))
+    type = types[choice(m.require("type", " (one of " + join(typeNames) + ")"), typeNames)];
+  ComponentSpec spec;
+  spec.type = type->schema.type;
+  spec.mark = report_.sourceMark(f);
+  spec.name = itemName(m, taken, itemNoun(section), type->schema.defaultName + std::to_string(index));
+  std::map<std::string, Field> fields;
+  readKeys(m, type->schema, types, section, scene, "", spec, fields);
+  if (type->complete) type->complete(spec, scene);
+  if (type->check)
+    if (const auto issue = type->check(spec, scene)) {
+      const auto it = fields.find(issue->key);
+      report_.fail(it == fields.end() ? f : it->second, issue->reason);
+    }
+  return spec;
+}
+
+// Keys of one map against its schema: first the keys that do not belong
+// here (so that the message names the real mistake), then the values in
+// schema order.
+void ComponentReader::readKeys(const MapView &m, const TypeSchema &schema, const std::vector<const PhysicsType *> &siblings,
+                           const std::string &section, const Scene &scene, const std::string &prefix,
+                           ComponentSpec &spec, std::map<std::string, Field> &fields) const
+{
+  for (const PhysicsType *sibling : siblings)
+    for (const KeySchema &k : sibling->schema.keys) {
+      if (schema.find(k.key) || !m.has(k.key)) continue;
+      std::string reason;
+      for (const KeyRule &rule : schema.rules)
+        if (rule.key == k.key && rule.when == KeyRule::When::Always) reason = rule.reason;
+      if (reason.empty()) {
+        std::vector<std::string> owners;
+        for (const PhysicsType *t : siblings)
+          if (t->schema.find(k.key)) owners.push_back(withArticle(t->schema.type));
+        for (std::size_t i = 0; i < owners.size(); ++i) reason += (i ? " or " : "") + owners[i];
+        reason = "only allowed for " + reason;
+      }
+      m.forbid(k.key, reason);
+    }
+  for (const KeyRule &rule : schema.rules) {
+    const bool given = !rule.condition.empty() && m.has(rule.condition);
+    if ((rule.when == KeyRule::When::IfPresent && given) || (rule.when == KeyRule::When::IfAbsent && !given))
+      m.forbid(rule.key, rule.reason);
+  }
+  for (const KeySchema &k : schema.keys) {
+    const std::optional<Field> given = m.get(k.key);
+    if (!given) {
+      const bool needed = k.need == Need::Required || (k.need == Need::RequiredWith && m.has(k.other)) ||
+                          (k.need == Need::RequiredWithout && !m.has(k.other));
+      if (needed) m.require(k.key);
+      if (k.hasDefault) spec.set(k.key, k.defaultNumber);
+      continue;
+    }
+    readValue(*given, k, section, scene, prefix, spec, fields);
+  }
+}
+
+void ComponentReader::readValue(const Field &f, const KeySchema &k, const std::string &section, const Scene &scene,
+                            const std::string &prefix, ComponentSpec &spec, std::map<std::string, Field> &fields) const
+{
+  fields.emplace(prefix + k.key, f);
+  switch (k.kind) {
+  case ValueKind::Number:
+    spec.set(k.key, k.limit == Limit::Positive ? positive(f) : k.limit == Limit::NonNegative ? nonNegative(f) : number(f));
+    return;
+  case ValueKind::Integer:
+    spec.set(k.key, static_cast<double>(integer(f, k.minInt, k.maxInt)));
+    return;
+  case ValueKind::Name:
+    spec.set(k.key, name(f));
+    return;
+  case ValueKind::Vec2:
+    spec.set(k.key, vec2(f));
+    return;
+  case ValueKind::TimeFunction:
+    spec.set(k.key, timeFunction(f));
+    return;
+  case ValueKind::AngleFunction:
+    spec.set(k.key, angleFunction(f));
+    return;
+  case ValueKind::Body: {
+    const std::string named = body(f, scene).name;
+    if (!k.differentFrom.empty() && spec.has(k.differentFrom) && spec.text(k.differentFrom) == named)
+      report_.fail(f, "must name another body than '" + k.differentFrom + "' ('" + named + "')");
+    spec.set(k.key, named);
+    return;
+  }
+  case ValueKind::MaterialCoordinate:
+    spec.set(k.key, materialCoordinate(f, bodyNamed(scene, spec.text(k.bodyKey))));
+    return;
+  case ValueKind::Component: {
+    const std::string named = name(f);
+    bool found = false;
+    for (const ComponentSpec &other : scene.components(section))
+      found = found || (other.type == k.refType && other.name == named);
+    if (!found) report_.fail(f, "names no " + k.refType + " listed before it ('" + named + "')");
+    spec.set(k.key, named);
+    return;
+  }
+  case ValueKind::Map: {
+    std::vector<std::string> keys;
+    for (const KeySchema &nested : k.nested->keys) keys.push_back(nested.key);
+    const MapView m(report_, f, keys);
+    ComponentSpec nested(k.nested->type, spec.name + "." + k.key);
+    nested.mark = report_.sourceMark(f);
+    readKeys(m, *k.nested, {}, section, scene, prefix + k.key + ".", nested, fields);
+    spec.set(k.key, nested);
+    return;
+  }
+  }
+}
+
+} // namespace boomdyn::scene_io

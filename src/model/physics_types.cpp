@@ -1,0 +1,76 @@
+// The registration list of physics types: one line per type. Each maker is
+// defined in the type's own file (src/constraints/pin_type.cpp, ...). The
+// order within a section is the order of its `type:` choices in messages
+// and of its tables in docs/scenes.md.
+#include "boomdyn/physics_type.hpp"
+
+#include <cmath>
+#include <stdexcept>
+
+#define BOOMDYN_PHYSICS_TYPES(X) \
+  X(clampType) \
+  X(pinType) \
+  X(angleDriveType) \
+  X(slidingJointType) \
+  X(extractionDriveType) \
+  X(ropeType) \
+  X(distanceType) \
+  X(pointForceType) \
+  X(pointMassType) \
+  X(springType) \
+  X(pointSensorType) \
+  X(frameSensorType)
+
+namespace boomdyn {
+
+#define BOOMDYN_DECLARE_TYPE(maker) PhysicsType maker();
+BOOMDYN_PHYSICS_TYPES(BOOMDYN_DECLARE_TYPE)
+#undef BOOMDYN_DECLARE_TYPE
+
+const std::vector<PhysicsType> &physicsTypes()
+{
+#define BOOMDYN_MAKE_TYPE(maker) maker(),
+  static const std::vector<PhysicsType> types{BOOMDYN_PHYSICS_TYPES(BOOMDYN_MAKE_TYPE)};
+#undef BOOMDYN_MAKE_TYPE
+  return types;
+}
+
+const BodySpec &bodySpec(const Scene &scene, const std::string &name)
+{
+  for (const BodySpec &b : scene.bodies)
+    if (b.name == name) return b;
+  throw std::logic_error("scene '" + scene.file + "' has no body '" + name + "'");
+}
+
+Vec2d initialPoint(const Scene &scene, const PointRef &point)
+{
+  const BodySpec &b = bodySpec(scene, point.body);
+  return {b.origin[0] + point.s * std::cos(b.angle), b.origin[1] + point.s * std::sin(b.angle)};
+}
+
+KeySchema bodyKey(const std::string &key, const std::string &help)
+{
+  return boomdyn::key(key, ValueKind::Body, "", Need::Required, help);
+}
+
+KeySchema atKey(const std::string &key, const std::string &body, const std::string &help)
+{
+  return boomdyn::key(key, ValueKind::MaterialCoordinate, "m", Need::Required, help).onBody(body);
+}
+
+std::vector<const PhysicsType *> physicsTypesOf(const std::string &section)
+{
+  std::vector<const PhysicsType *> out;
+  for (const PhysicsType &t : physicsTypes())
+    if (t.schema.section == section) out.push_back(&t);
+  return out;
+}
+
+const PhysicsType *findPhysicsType(const std::string &section, const std::string &type)
+{
+  for (const PhysicsType &t : physicsTypes())
+    if (t.schema.section == section && t.schema.type == type) return &t;
+  return nullptr;
+}
+
+} // namespace boomdyn
