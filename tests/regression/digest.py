@@ -15,7 +15,7 @@ regenerates every stored digest.
 A digest is a small text file, one `key value` per line, of the numbers that
 say what a run computed (docs/verification.md, "Regression digests"):
 
-  run.*        step count, rejected steps, total Newton iterations (exact),
+  run.*        step count, rejected steps, total Newton iterations,
                final time, smallest and largest step
   state.*      2-norms of the final q, v and lambda (last row of /state)
   violation.*  the largest constraint violation of the run
@@ -28,7 +28,8 @@ say what a run computed (docs/verification.md, "Regression digests"):
   events.*     the stick/slip events: count, and time, joint and kind of the
                first 20 and the last
 
-Comparison. Integers (written without a decimal point) must be equal. A real
+Comparison. Integers (written without a decimal point) must be equal, except
+the total of Newton iterations (INT_TOLERANCES below: within 5e-3). A real
 value passes when |new - stored| <= RTOL * max(|stored|, scale) + ATOL(key),
 where `scale` is the largest |stored| value of the key's family (the key
 without its sample index and last part: sensor.tip.position for
@@ -70,6 +71,16 @@ FLOORS = [
     # enforced, a Newton tolerance loosened) makes it 1e-10 m or larger.
     ("violation.", 1e-10, "roundoff by nature; a real change makes it > 1e-10 m"),
 ]
+
+# Integers compared with a relative tolerance instead of exactly (key, rtol, why).
+INT_TOLERANCES = {
+    # Newton's convergence test sits on a threshold: a change of the order of
+    # summation alone (the same run on 2 ranks) takes 14 more iterations in
+    # paper_extraction (19697 of 19683, 7e-4) while every real number of its
+    # digest agrees to 4e-11. The reals, not this count, detect real changes
+    # (rho_inf 0.8 -> 0.79 changes it by 7e-4 too, and 35 reals by far more).
+    "run.newton.total": (5e-3, "iteration counts flip at the convergence threshold under roundoff"),
+}
 
 SAMPLE_FRACTIONS = (0.2, 0.4, 0.6, 0.8, 1.0)
 EVENTS_LISTED = 20
@@ -264,17 +275,18 @@ def compare(stored, new):
     """Mismatch lines (empty when the digests agree)."""
     problems = []
     stored_map, new_map = dict(stored), dict(new)
-    scale = {}
-    for k, v in stored:
-        if isinstance(v, float) and math.isfinite(v):
-            scale[family(k)] = max(scale.get(family(k), 0.0), abs(v))
+    scale = family_scales(stored)
     for k, ref in stored:
         if k not in new_map:
             problems.append(f"{k}: stored {format_value(ref)}, absent from the new run")
             continue
         got = new_map[k]
         if isinstance(ref, int) and isinstance(got, int):
-            if got != ref:
+            if k in INT_TOLERANCES:
+                rtol = INT_TOLERANCES[k][0]
+                if abs(got - ref) > rtol * abs(ref):
+                    problems.append(f"{k}: stored {ref}, new {got} (may differ by {rtol:g} relative: {INT_TOLERANCES[k][1]})")
+            elif got != ref:
                 problems.append(f"{k}: stored {ref}, new {got} (integers must be equal)")
             continue
         ref, got = float(ref), float(got)
@@ -282,7 +294,7 @@ def compare(stored, new):
             if not (ref == got or (math.isnan(ref) and math.isnan(got))):
                 problems.append(f"{k}: stored {ref!r}, new {got!r}")
             continue
-        tol = RTOL * max(abs(ref), scale.get(family(k), 0.0)) + floor_for(k)
+        tol = tolerance(k, ref, scale)
         diff = abs(got - ref)
         if diff > tol:
             rel = diff / abs(ref) if ref != 0 else math.inf
@@ -294,15 +306,28 @@ def compare(stored, new):
     return problems
 
 
+def tolerance(key, ref, scale):
+    return RTOL * max(abs(ref), scale.get(family(key), 0.0)) + floor_for(key)
+
+
+def family_scales(stored):
+    scale = {}
+    for k, v in stored:
+        if isinstance(v, float) and math.isfinite(v):
+            scale[family(k)] = max(scale.get(family(k), 0.0), abs(v))
+    return scale
+
+
 def largest_change(stored, new):
-    """(key, relative change) of the largest relative change among the reals."""
-    new_map = dict(new)
+    """(key, difference / tolerance) of the real value that used most of its tolerance."""
+    new_map, scale = dict(new), family_scales(stored)
     best = (None, 0.0)
     for k, ref in stored:
-        if isinstance(ref, float) and k in new_map and ref != 0:
-            rel = abs(float(new_map[k]) - ref) / abs(ref)
-            if rel > best[1]:
-                best = (k, rel)
+        if isinstance(ref, float) and k in new_map and math.isfinite(ref):
+            tol = tolerance(k, ref, scale)
+            used = abs(float(new_map[k]) - ref) / tol if tol > 0 else (0.0 if new_map[k] == ref else math.inf)
+            if used > best[1]:
+                best = (k, used)
     return best
 
 
@@ -357,7 +382,7 @@ def main():
         return 1
     stored = read_digest(args.digest)
     problems = compare(stored, new)
-    key, rel = largest_change(stored, new)
+    key, used = largest_change(stored, new)
     if problems:
         print(f"digest: {args.results} differs from {args.digest} in {len(problems)} of {len(stored)} values:")
         for p in problems:
@@ -368,7 +393,7 @@ def main():
               "and say in the commit message which numbers moved and by how much (docs/verification.md).")
         return 1
     print(f"digest: {args.results} matches {args.digest} ({len(stored)} values, rtol {RTOL:g}; "
-          f"largest relative change {rel:.2e}" + (f" in {key})" if key else ")"))
+          "largest difference " + (f"{used:.1e} of its tolerance, in {key})" if key else "0)"))
     return 0
 
 
