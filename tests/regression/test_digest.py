@@ -43,11 +43,17 @@ def main():
     check(len(digest.compare(STORED, changed("sensor.tip.velocity.x@1", 1e-6 + 1e-8))) == 1,
           "... and 1e-8 m/s on a 2 m/s family fails")
     check(len(digest.compare(STORED, changed("run.steps.count", 1001))) == 1, "integers must be equal")
-    newton = STORED + [("run.newton.total", 19683)]
-    check(digest.compare(newton, newton[:-1] + [("run.newton.total", 19697)]) == [],
+    newton = [("run.newton.total", 19683)] + STORED  # first, as in a digest: its tolerance must not leak
+    check(digest.compare(newton, [("run.newton.total", 19697)] + STORED) == [],
           "the Newton iteration total may move by roundoff (19683 -> 19697, as on 2 ranks)")
-    check(len(digest.compare(newton, newton[:-1] + [("run.newton.total", 19900)])) == 1,
+    check(len(digest.compare(newton, [("run.newton.total", 19900)] + STORED)) == 1,
           "... but not by 1 %")
+    p = digest.compare(newton, [("run.newton.total", 19697)] + changed("state.q.norm", 6.0 * (1 + 1e-8)))
+    check(len(p) == 1 and p[0].startswith("state.q.norm"),
+          "the Newton total's tolerance applies to it alone (a 1e-8 change after it still fails): %s" % p)
+    check(len(digest.compare(STORED, changed("state.q.norm", 6.0 * (1 + 1e-8)), rtol=1e-5)) == 0
+          and len(digest.compare(STORED, changed("state.q.norm", 6.0 * (1 + 1e-4)), rtol=1e-5)) == 1,
+          "a scene's own rtol (1e-5) replaces the default")
     check(digest.compare(STORED, changed("violation.max.value", 3e-15)) == [],
           "the constraint violation may move within roundoff (floor 1e-10)")
     check(len(digest.compare(STORED, changed("violation.max.value", 1e-9))) == 1,
