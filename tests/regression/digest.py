@@ -257,8 +257,8 @@ def write_digest(path, entries, command):
              f"# made by: {command}",
              f"# compared with rtol {rtol:g}" + (f" ({why})" if why else "") +
              " relative to max(|value|, largest |value| of the key's family);",
-             "# integers exactly. Regenerate after an intended change with --update, and say in the",
-             "# commit which numbers moved and by how much."]
+             "# integers exactly (the Newton total within 5e-3). Regenerate after an intended change",
+             "# with --update, and say in the commit which numbers moved and by how much."]
     lines += [f"{k} {format_value(v)}" for k, v in entries]
     Path(path).write_text("\n".join(lines) + "\n", encoding="utf-8")
 
