@@ -3,8 +3,12 @@
 # fuzz.scene_parser   libFuzzer on the scene reader for 60 s (clang++, ASan + UBSan),
 #                     built outside this (g++) project by tests/fuzz/run_fuzzer.sh into
 #                     ${CMAKE_BINARY_DIR}/fuzz; SKIPPED when there is no clang++.
-# bad_input.models    every scene in tests/bad_model/ is refused cleanly by boomdyn
-#                     (tests/bad_model/run_bad_models.py).
+# bad_model.<case>    each scene in tests/bad_model/ is refused cleanly by boomdyn
+#                     (tests/bad_model/run_bad_models.py on that one file).
+# bad_input.<case>    each file in tests/bad_input/ is refused cleanly by the boomdyn
+#                     program, checked by the same runner (the reader's own message is
+#                     also checked in-process by the unit test
+#                     SceneReaderFiles.EveryBadInputIsRejectedAsAnnounced).
 # See docs/reliability.md.
 
 add_test(NAME fuzz.scene_parser
@@ -22,10 +26,18 @@ if(BOOMDYN_SANITIZE)
   set(bad_model_args --mem-mb 0)
   set(bad_model_env "ASAN_OPTIONS=detect_leaks=0:hard_rss_limit_mb=4096")
 endif()
-add_test(NAME bad_input.models
-  COMMAND /usr/bin/python3 ${CMAKE_SOURCE_DIR}/tests/bad_model/run_bad_models.py
-          --boomdyn $<TARGET_FILE:boomdyn> ${bad_model_args})
-set_tests_properties(bad_input.models PROPERTIES LABELS bad_input TIMEOUT 900)
-if(bad_model_env)
-  set_tests_properties(bad_input.models PROPERTIES ENVIRONMENT "${bad_model_env}")
-endif()
+# One CTest per case, so that `ctest -R bad_model.` lists failures by name and
+# `ctest -R bad_model.slider_beyond_track` reruns one.
+foreach(kind bad_model bad_input)
+  file(GLOB cases CONFIGURE_DEPENDS ${CMAKE_SOURCE_DIR}/tests/${kind}/*.yaml)
+  foreach(case ${cases})
+    get_filename_component(stem ${case} NAME_WE)
+    add_test(NAME ${kind}.${stem}
+      COMMAND /usr/bin/python3 ${CMAKE_SOURCE_DIR}/tests/bad_model/run_bad_models.py
+              --boomdyn $<TARGET_FILE:boomdyn> ${bad_model_args} ${case})
+    set_tests_properties(${kind}.${stem} PROPERTIES LABELS ${kind} TIMEOUT 120)
+    if(bad_model_env)
+      set_tests_properties(${kind}.${stem} PROPERTIES ENVIRONMENT "${bad_model_env}")
+    endif()
+  endforeach()
+endforeach()

@@ -14,12 +14,27 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
 namespace boomdyn::testing {
 
-inline void check(PetscErrorCode ierr) { ASSERT_EQ(ierr, 0) << "PETSc error " << ierr; }
+// A failed PETSc call must end the test. ASSERT_* inside this helper would
+// only return from the helper and let the caller go on with a half-built
+// object (and check() is also called from functions that return values,
+// where ASSERT_* cannot be used), so it throws instead: GoogleTest reports an
+// exception that leaves a test body as a failure of that test and runs the
+// next one. Not for use inside callbacks that PETSc calls (use PetscCall there).
+struct PetscCallFailed : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+inline void check(PetscErrorCode ierr)
+{
+  if (ierr != 0) throw PetscCallFailed("PETSc call failed with error code " + std::to_string(ierr));
+}
 
 struct StaticOutcome {
   std::vector<SensorReading> sensors; // on rank 0
@@ -160,11 +175,27 @@ inline Scene shortenedExtraction(double seconds)
   return scene;
 }
 
-// max |a - b| / max |a| over two states of the same layout.
+// max |a - b| / max |a| over two states of the same layout. States of
+// different sizes, empty states and states with a NaN cannot be compared:
+// that is a failure of the test (recorded here), and the result is +inf, so
+// that the caller's EXPECT_LT(d, tol) fails as well.
 inline double maxRelativeDifference(const std::vector<double> &a, const std::vector<double> &b)
 {
+  const double never = std::numeric_limits<double>::infinity();
+  if (a.size() != b.size()) {
+    ADD_FAILURE() << "maxRelativeDifference: states of different sizes (" << a.size() << " and " << b.size() << ")";
+    return never;
+  }
+  if (a.empty()) {
+    ADD_FAILURE() << "maxRelativeDifference: empty states (nothing was recorded)";
+    return never;
+  }
   double diff = 0, norm = 0;
-  for (std::size_t i = 0; i < a.size() && i < b.size(); ++i) {
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    if (std::isnan(a[i]) || std::isnan(b[i])) {
+      ADD_FAILURE() << "maxRelativeDifference: NaN at index " << i;
+      return never;
+    }
     diff = std::max(diff, std::abs(a[i] - b[i]));
     norm = std::max(norm, std::abs(a[i]));
   }

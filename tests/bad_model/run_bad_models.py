@@ -2,7 +2,7 @@
 """Runs boomdyn on every scene in tests/bad_model/ and checks that it is refused cleanly.
 
     /usr/bin/python3 tests/bad_model/run_bad_models.py [--boomdyn build/boomdyn] [FILE.yaml ...]
-    (CTest: bad_input.models)
+    (CTest: bad_model.<case> and bad_input.<case>, one per file; tests/fuzz.cmake)
 
 The scenes in tests/bad_model/ are valid YAML that the scene reader accepts,
 but that describe a mechanism the program cannot run: a constraint violated by
