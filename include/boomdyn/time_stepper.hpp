@@ -43,4 +43,10 @@ PetscErrorCode integrate(GeneralizedAlpha &integrator, const DynamicSpec &spec,
                          const std::function<PetscErrorCode(const StepInfo &)> &onStep, RunSummary *summary,
                          StepperState *state = nullptr, const std::function<bool()> &stop = {});
 
+// Checkpoints of the step controller, next to the integrator's own state
+// (GeneralizedAlpha::save): keys stepper.h, stepper.successes, stepper.steps,
+// stepper.rejected, stepper.newton. Pass a CheckpointWriter/-Reader (io).
+PetscErrorCode saveStepper(StateWriter &out, const StepperState &state);
+PetscErrorCode restoreStepper(const StateReader &in, StepperState *state);
+
 } // namespace boomdyn

@@ -7,14 +7,6 @@
 
 namespace boomdyn {
 
-NewtonSolver::~NewtonSolver()
-{
-  if (snes_) (void)SNESDestroy(&snes_);
-  if (J_) (void)MatDestroy(&J_);
-  if (F_) (void)VecDestroy(&F_);
-  if (x0_) (void)VecDestroy(&x0_);
-}
-
 PetscErrorCode NewtonSolver::setUp(Assembler &assembler, const char *prefix, PetscInt maxIterations)
 {
   KSP ksp;
@@ -22,10 +14,10 @@ PetscErrorCode NewtonSolver::setUp(Assembler &assembler, const char *prefix, Pet
   PetscFunctionBeginUser;
   assembler_ = &assembler;
   patternVersion_ = assembler.patternVersion();
-  PetscCall(assembler.createMatrix(&J_));
-  PetscCall(assembler.createVector(&F_));
-  PetscCall(assembler.createVector(&x0_));
-  PetscCall(SNESCreate(assembler.comm(), &snes_));
+  PetscCall(assembler.createMatrix(J_.address()));
+  PetscCall(assembler.createVector(F_.address()));
+  PetscCall(assembler.createVector(x0_.address()));
+  PetscCall(SNESCreate(assembler.comm(), snes_.address()));
   if (prefix) PetscCall(SNESSetOptionsPrefix(snes_, prefix));
   PetscCall(SNESSetFunction(snes_, F_, formFunction, this));
   PetscCall(SNESSetJacobian(snes_, J_, J_, formJacobian, this));
@@ -90,8 +82,7 @@ PetscErrorCode NewtonSolver::solve(Vec x, PetscInt *iterations, SNESConvergedRea
     // pattern and a reset KSP, so that MUMPS redoes its symbolic
     // factorization (reusing it is wrong on more than one rank: trap 1).
     KSP ksp;
-    PetscCall(MatDestroy(&J_));
-    PetscCall(assembler_->createMatrix(&J_));
+    PetscCall(assembler_->createMatrix(J_.address()));
     PetscCall(SNESGetKSP(snes_, &ksp));
     PetscCall(KSPReset(ksp));
     PetscCall(SNESSetJacobian(snes_, J_, J_, formJacobian, this));
@@ -114,7 +105,7 @@ PetscErrorCode NewtonSolver::solve(Vec x, PetscInt *iterations, SNESConvergedRea
     // Failed with a matrix from an earlier solve: redo from the same guess with a current one.
     PetscInt more;
     ++stats_.retriesWithFreshJacobian;
-    PetscCall(PetscInfo(snes_, "solve with a reused Jacobian failed (%s); retrying with a fresh one\n",
+    PetscCall(PetscInfo(snes_.get(), "solve with a reused Jacobian failed (%s); retrying with a fresh one\n",
                         SNESConvergedReasons[*reason]));
     PetscCall(VecCopy(x0_, x));
     PetscCall(SNESSetLagJacobian(snes_, -2));

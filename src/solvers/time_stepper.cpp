@@ -100,7 +100,9 @@ PetscErrorCode createTS(RunCallbacks &cb, const DynamicSpec &spec, TSHandle *out
   PetscCall(TSGetAdapt(ts, &adapt));
   PetscCall(TSAdaptSetType(adapt, TSADAPTBOOMALPHA));
   PetscCall(TSAdaptSetScaleSolveFailed(adapt, 0.5));
-  PetscCall(TSAdaptSetStepLimits(adapt, spec.dt_min, spec.dt));
+  // The scene's limits, shown by -ts_view (PETSc wants dt_min < dt_max
+  // strictly; a scene may forbid cuts with dt_min = dt).
+  if (spec.dt_min < spec.dt) PetscCall(TSAdaptSetStepLimits(adapt, spec.dt_min, spec.dt));
   PetscCall(rejectInapplicableOptions(comm));
   PetscCall(TSSetFromOptions(ts));
   PetscCall(PetscObjectTypeCompare((PetscObject)ts, TSBOOMALPHA, &boom));
@@ -119,7 +121,17 @@ PetscErrorCode createTS(RunCallbacks &cb, const DynamicSpec &spec, TSHandle *out
   PetscCall(TSSetStepNumber(ts, st.steps));
   PetscCall(TSSetTimeStep(ts, st.h));
   PetscCall(TSSetMaxTime(ts, spec.t_end));
-  PetscCall(TSAdaptGetStepLimits(adapt, &cb.run.dtMin, &cb.run.dt));
+  // -ts_adapt_dt_min and -ts_adapt_dt_max override the scene's dt_min and
+  // the ceiling of regrowth (the scene's dt).
+  PetscReal dtMin, dtMax;
+  PetscBool setMin, setMax;
+  const char *prefix;
+  PetscCall(TSAdaptGetStepLimits(adapt, &dtMin, &dtMax));
+  PetscCall(PetscObjectGetOptionsPrefix((PetscObject)adapt, &prefix));
+  PetscCall(PetscOptionsHasName(nullptr, prefix, "-ts_adapt_dt_min", &setMin));
+  PetscCall(PetscOptionsHasName(nullptr, prefix, "-ts_adapt_dt_max", &setMax));
+  cb.run.dtMin = setMin ? dtMin : spec.dt_min;
+  cb.run.dt = setMax ? dtMax : spec.dt;
   PetscFunctionReturn(0);
 }
 
@@ -163,6 +175,28 @@ PetscErrorCode integrate(GeneralizedAlpha &integrator, const DynamicSpec &spec,
     summary->completed = true;
     summary->stepLimit = integrator.time() < spec.t_end - cb.run.endTolerance;
   }
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode saveStepper(StateWriter &out, const StepperState &state)
+{
+  PetscFunctionBeginUser;
+  out.addScalar("stepper.h", state.h);
+  out.addScalar("stepper.successes", state.successesSinceCut);
+  out.addScalar("stepper.steps", state.steps);
+  out.addScalar("stepper.rejected", state.rejected);
+  out.addScalar("stepper.newton", state.newtonIterations);
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode restoreStepper(const StateReader &in, StepperState *state)
+{
+  PetscFunctionBeginUser;
+  state->h = in.scalar("stepper.h");
+  state->successesSinceCut = static_cast<int>(in.scalar("stepper.successes"));
+  state->steps = static_cast<PetscInt>(in.scalar("stepper.steps"));
+  state->rejected = static_cast<PetscInt>(in.scalar("stepper.rejected"));
+  state->newtonIterations = static_cast<PetscInt>(in.scalar("stepper.newton"));
   PetscFunctionReturn(0);
 }
 
