@@ -64,6 +64,7 @@ private:
   static PetscErrorCode convergenceTest(SNES, PetscInt it, PetscReal xnorm, PetscReal snorm, PetscReal fnorm,
                                         SNESConvergedReason *reason, void *self);
   PetscErrorCode solveOnce(Vec x, PetscInt *iterations, SNESConvergedReason *reason);
+  static PetscErrorCode factor(SNES snes, Mat J);
   bool sameIterationMatrix(const AssemblyContext &a, const AssemblyContext &b) const;
 
   Assembler *assembler_ = nullptr;

@@ -153,15 +153,46 @@ PetscErrorCode NewtonSolver::formFunction(SNES, Vec x, Vec F, void *self)
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode NewtonSolver::formJacobian(SNES, Vec x, Mat J, Mat, void *self)
+PetscErrorCode NewtonSolver::formJacobian(SNES snes, Vec x, Mat J, Mat, void *self)
 {
   auto *me = static_cast<NewtonSolver *>(self);
   PetscFunctionBeginUser;
   PetscCall(me->assembler_->evaluate(me->ctx, x, nullptr, J));
+  PetscCall(factor(snes, J));
   ++me->stats_.jacobians;
   me->jacobianValid_ = me->jacobianFresh_ = true;
   me->jacobianCtx_ = me->ctx;
   me->jacobianAge_ = 0;
+  PetscFunctionReturn(0);
+}
+
+// Factors the new iteration matrix here, before SNES's linear solve would,
+// so that a failure is recognised by its error code rather than by the text
+// of a message: KLU (and MUMPS with -ksp_error_if_not_converged) raise
+// PETSC_ERR_LIB when the numeric factorization breaks down, which for these
+// saddle-point matrices means they are singular. The library's own error is
+// kept out of the error log (PetscReturnErrorHandler) and replaced by one
+// that says what is wrong with the model. MUMPS otherwise records a factor
+// error without raising one; SNES then ends with DIVERGED_LINEAR_SOLVE and
+// the step is cut, as before. The solve that follows reuses this
+// factorization (the matrix state is unchanged).
+PetscErrorCode NewtonSolver::factor(SNES snes, Mat J)
+{
+  KSP ksp;
+  PC pc;
+  PetscFunctionBeginUser;
+  PetscCall(SNESGetKSP(snes, &ksp));
+  PetscCall(KSPSetOperators(ksp, J, J));
+  PetscCall(KSPGetPC(ksp, &pc));
+  PetscCall(PetscPushErrorHandler(PetscReturnErrorHandler, nullptr));
+  const PetscErrorCode ierr = PCSetUp(pc);
+  PetscCall(PetscPopErrorHandler());
+  PetscCheck(ierr != PETSC_ERR_LIB, PetscObjectComm((PetscObject)snes), PETSC_ERR_MAT_LU_ZRPVT,
+             "the system matrix is singular: a body or motion without support, or redundant or contradictory "
+             "constraints (two drives on one joint, a clamp plus an angle drive at one point, ...); the direct "
+             "solver's LU decomposition broke down");
+  PetscCheck(ierr == 0, PetscObjectComm((PetscObject)snes), ierr,
+             "the direct solver failed to set up (PETSc error code %d; run with -on_error_abort for its trace)", (int)ierr);
   PetscFunctionReturn(0);
 }
 
