@@ -5,8 +5,11 @@
 // Why a TS type of our own: TSALPHA2 carries multipliers as second-order
 // unknowns, enforces constraints at t_{n+alpha_f} and starts without
 // consistent accelerations, which loses second order on index-3 systems
-// (docs/petsc-notes.md). The type drives GeneralizedAlpha::step(); the TS
-// solution vector is the integrator's position vector (layout of x).
+// (measured on a pendulum: first order with damping, oscillating
+// multipliers without; docs/model.md has the scheme). The type drives
+// GeneralizedAlpha::step(); the TS solution vector is the integrator's
+// position vector (layout of x). Step-size control and final-time matching
+// keep the numbers of the loop this replaced, bit for bit.
 //
 // The step (TSStep_BoomAlpha) retries a failed attempt inside one TSStep, as
 // PETSc's own implicit types do:
