@@ -48,5 +48,6 @@ boomdyn_script_test(postprocess.paper_comparison_figures postprocess/test_paper_
 boomdyn_script_test(postprocess.xdmf postprocess/test_xdmf.py postprocess)
 boomdyn_script_test(postprocess.study postprocess/test_study.py postprocess)
 boomdyn_script_test(regression.restart regression/test_restart.py "regression;mpi")
+boomdyn_script_test(ts.options ts/test_ts_options.py ts)
 set_tests_properties(regression.restart PROPERTIES PROCESSORS 2
   ENVIRONMENT "OMPI_ALLOW_RUN_AS_ROOT=1;OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1")

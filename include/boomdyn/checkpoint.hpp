@@ -6,6 +6,8 @@
 // one rank (same operations on the same numbers).
 #pragma once
 
+#include "boomdyn/state_archive.hpp"
+
 #include <petscvec.h>
 
 #include <map>
@@ -15,14 +17,14 @@
 
 namespace boomdyn {
 
-class CheckpointWriter {
+class CheckpointWriter : public StateWriter {
 public:
   explicit CheckpointWriter(MPI_Comm comm) : comm_(comm) {}
   // Collective: a distributed vector, stored whole.
-  PetscErrorCode addVector(const std::string &name, Vec v);
+  PetscErrorCode addVector(const std::string &name, Vec v) override;
   // Values known on every rank (identical) or on rank 0 only (rank0Only).
-  void addScalar(const std::string &name, double value) { scalars_[name] = value; }
-  void addArray(const std::string &name, const std::vector<double> &values) { arrays_[name] = values; }
+  void addScalar(const std::string &name, double value) override { scalars_[name] = value; }
+  void addArray(const std::string &name, const std::vector<double> &values) override { arrays_[name] = values; }
   // Collective: writes path (via path + ".tmp" and a rename).
   PetscErrorCode write(const std::string &path, const std::string &sceneText);
 
@@ -33,17 +35,17 @@ private:
   std::map<std::string, std::vector<double>> vectors_; // gathered on rank 0
 };
 
-class CheckpointReader {
+class CheckpointReader : public StateReader {
 public:
   explicit CheckpointReader(MPI_Comm comm) : comm_(comm) {}
   // Collective: reads the file on rank 0 and broadcasts scalars and arrays.
   // Throws std::runtime_error naming the file when it cannot be read.
   PetscErrorCode read(const std::string &path);
   // Collective: fills a distributed vector of the right global size.
-  PetscErrorCode getVector(const std::string &name, Vec v) const;
+  PetscErrorCode getVector(const std::string &name, Vec v) const override;
   bool hasVector(const std::string &name) const { return vectorNames_.count(name) > 0; }
-  double scalar(const std::string &name) const;
-  const std::vector<double> &array(const std::string &name) const;
+  double scalar(const std::string &name) const override;
+  const std::vector<double> &array(const std::string &name) const override;
   const std::string &sceneText() const { return sceneText_; }
 
 private:

@@ -12,9 +12,10 @@
 // q_{n+1} and lambda_{n+1} through SNES (NewtonSolver).
 #pragma once
 
-#include "boomdyn/checkpoint.hpp"
 #include "boomdyn/newton_solver.hpp"
+#include "boomdyn/petsc_handle.hpp"
 #include "boomdyn/slider_tracker.hpp"
+#include "boomdyn/state_archive.hpp"
 
 #include <string>
 
@@ -43,7 +44,6 @@ public:
     : assembler_(assembler), params_(AlphaParameters::fromRhoInf(rho_inf)), sliders_(assembler)
   {
   }
-  ~GeneralizedAlpha();
   GeneralizedAlpha(const GeneralizedAlpha &) = delete;
   GeneralizedAlpha &operator=(const GeneralizedAlpha &) = delete;
 
@@ -53,8 +53,8 @@ public:
   PetscErrorCode initialize(double t0, Vec q0, Vec v0);
   // Checkpoints: the state vectors and time; restore() replaces initialize()
   // and moves the sliding joints to the elements that hold the restored s.
-  PetscErrorCode save(CheckpointWriter &out) const;
-  PetscErrorCode restore(const CheckpointReader &in);
+  PetscErrorCode save(StateWriter &out) const;
+  PetscErrorCode restore(const StateReader &in);
   // Attempt one step of size h. On failure the state is left unchanged.
   PetscErrorCode step(double h, StepResult *result);
 
@@ -86,9 +86,8 @@ private:
   SliderTracker sliders_;
   double t_ = 0, massScale_ = 1, errorTolerance_ = 0;
   bool hasDrives_ = false; // some constraint depends on time (its power needs the multipliers)
-  Vec q_ = nullptr, v_ = nullptr, qdd_ = nullptr, a_ = nullptr, lambda_ = nullptr;
-  Vec x_ = nullptr, qp_ = nullptr, vc_ = nullptr, ac_ = nullptr, zero_ = nullptr;
-  IS lambdaIS_ = nullptr;
+  PetscHandle<Vec> q_, v_, qdd_, a_, lambda_;       // state at t_
+  PetscHandle<Vec> x_, qp_, vc_, ac_, zero_;        // work vectors of a step
 };
 
 } // namespace boomdyn

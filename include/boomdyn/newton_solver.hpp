@@ -15,10 +15,16 @@
 #pragma once
 
 #include "boomdyn/assembler.hpp"
+#include "boomdyn/petsc_handle.hpp"
 
 #include <petscsnes.h>
 
 namespace boomdyn {
+
+template <>
+struct PetscDestroyer<SNES> {
+  static PetscErrorCode destroy(SNES *s) { return SNESDestroy(s); }
+};
 
 struct JacobianReuse {
   bool enabled = false;
@@ -35,7 +41,6 @@ struct NewtonStatistics {
 class NewtonSolver {
 public:
   NewtonSolver() = default;
-  ~NewtonSolver();
   NewtonSolver(const NewtonSolver &) = delete;
   NewtonSolver &operator=(const NewtonSolver &) = delete;
 
@@ -59,13 +64,14 @@ private:
   static PetscErrorCode convergenceTest(SNES, PetscInt it, PetscReal xnorm, PetscReal snorm, PetscReal fnorm,
                                         SNESConvergedReason *reason, void *self);
   PetscErrorCode solveOnce(Vec x, PetscInt *iterations, SNESConvergedReason *reason);
+  static PetscErrorCode factor(SNES snes, Mat J);
   bool sameIterationMatrix(const AssemblyContext &a, const AssemblyContext &b) const;
 
   Assembler *assembler_ = nullptr;
   int patternVersion_ = 0;
-  SNES snes_ = nullptr;
-  Mat J_ = nullptr;
-  Vec F_ = nullptr, x0_ = nullptr;
+  PetscHandle<SNES> snes_;
+  PetscHandle<Mat> J_;
+  PetscHandle<Vec> F_, x0_;
   JacobianReuse reuse_;
   NewtonStatistics stats_;
   bool jacobianValid_ = false;   // J_ holds a factored matrix usable for ctx

@@ -19,17 +19,11 @@ AlphaParameters AlphaParameters::fromRhoInf(double rho)
   return p;
 }
 
-GeneralizedAlpha::~GeneralizedAlpha()
-{
-  for (Vec *v : {&q_, &v_, &qdd_, &a_, &lambda_, &x_, &qp_, &vc_, &ac_, &zero_})
-    if (*v) (void)VecDestroy(v);
-  if (lambdaIS_) (void)ISDestroy(&lambdaIS_);
-}
-
 PetscErrorCode GeneralizedAlpha::setUp(PetscInt maxNewton)
 {
   PetscFunctionBeginUser;
-  for (Vec *v : {&q_, &v_, &qdd_, &a_, &lambda_, &x_, &qp_, &vc_, &ac_, &zero_}) PetscCall(assembler_.createVector(v));
+  for (PetscHandle<Vec> *v : {&q_, &v_, &qdd_, &a_, &lambda_, &x_, &qp_, &vc_, &ac_, &zero_})
+    PetscCall(assembler_.createVector(v->address()));
   PetscCall(newton_.setUp(assembler_, nullptr, maxNewton));
   PetscCall(sliders_.setUp(x_));
   for (const ConstraintItem *c : assembler_.model().constraints()) hasDrives_ = hasDrives_ || c->constraint().dependsOnTime();
@@ -209,7 +203,7 @@ PetscErrorCode GeneralizedAlpha::step(double h, StepResult *result)
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode GeneralizedAlpha::save(CheckpointWriter &out) const
+PetscErrorCode GeneralizedAlpha::save(StateWriter &out) const
 {
   PetscFunctionBeginUser;
   PetscCall(out.addVector("q", q_));
@@ -222,7 +216,7 @@ PetscErrorCode GeneralizedAlpha::save(CheckpointWriter &out) const
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode GeneralizedAlpha::restore(const CheckpointReader &in)
+PetscErrorCode GeneralizedAlpha::restore(const StateReader &in)
 {
   PetscFunctionBeginUser;
   PetscCall(in.getVector("q", q_));

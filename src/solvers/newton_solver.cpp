@@ -7,14 +7,6 @@
 
 namespace boomdyn {
 
-NewtonSolver::~NewtonSolver()
-{
-  if (snes_) (void)SNESDestroy(&snes_);
-  if (J_) (void)MatDestroy(&J_);
-  if (F_) (void)VecDestroy(&F_);
-  if (x0_) (void)VecDestroy(&x0_);
-}
-
 PetscErrorCode NewtonSolver::setUp(Assembler &assembler, const char *prefix, PetscInt maxIterations)
 {
   KSP ksp;
@@ -22,10 +14,10 @@ PetscErrorCode NewtonSolver::setUp(Assembler &assembler, const char *prefix, Pet
   PetscFunctionBeginUser;
   assembler_ = &assembler;
   patternVersion_ = assembler.patternVersion();
-  PetscCall(assembler.createMatrix(&J_));
-  PetscCall(assembler.createVector(&F_));
-  PetscCall(assembler.createVector(&x0_));
-  PetscCall(SNESCreate(assembler.comm(), &snes_));
+  PetscCall(assembler.createMatrix(J_.address()));
+  PetscCall(assembler.createVector(F_.address()));
+  PetscCall(assembler.createVector(x0_.address()));
+  PetscCall(SNESCreate(assembler.comm(), snes_.address()));
   if (prefix) PetscCall(SNESSetOptionsPrefix(snes_, prefix));
   PetscCall(SNESSetFunction(snes_, F_, formFunction, this));
   PetscCall(SNESSetJacobian(snes_, J_, J_, formJacobian, this));
@@ -90,8 +82,7 @@ PetscErrorCode NewtonSolver::solve(Vec x, PetscInt *iterations, SNESConvergedRea
     // pattern and a reset KSP, so that MUMPS redoes its symbolic
     // factorization (reusing it is wrong on more than one rank: trap 1).
     KSP ksp;
-    PetscCall(MatDestroy(&J_));
-    PetscCall(assembler_->createMatrix(&J_));
+    PetscCall(assembler_->createMatrix(J_.address()));
     PetscCall(SNESGetKSP(snes_, &ksp));
     PetscCall(KSPReset(ksp));
     PetscCall(SNESSetJacobian(snes_, J_, J_, formJacobian, this));
@@ -114,7 +105,7 @@ PetscErrorCode NewtonSolver::solve(Vec x, PetscInt *iterations, SNESConvergedRea
     // Failed with a matrix from an earlier solve: redo from the same guess with a current one.
     PetscInt more;
     ++stats_.retriesWithFreshJacobian;
-    PetscCall(PetscInfo(snes_, "solve with a reused Jacobian failed (%s); retrying with a fresh one\n",
+    PetscCall(PetscInfo(snes_.get(), "solve with a reused Jacobian failed (%s); retrying with a fresh one\n",
                         SNESConvergedReasons[*reason]));
     PetscCall(VecCopy(x0_, x));
     PetscCall(SNESSetLagJacobian(snes_, -2));
@@ -162,15 +153,46 @@ PetscErrorCode NewtonSolver::formFunction(SNES, Vec x, Vec F, void *self)
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode NewtonSolver::formJacobian(SNES, Vec x, Mat J, Mat, void *self)
+PetscErrorCode NewtonSolver::formJacobian(SNES snes, Vec x, Mat J, Mat, void *self)
 {
   auto *me = static_cast<NewtonSolver *>(self);
   PetscFunctionBeginUser;
   PetscCall(me->assembler_->evaluate(me->ctx, x, nullptr, J));
+  PetscCall(factor(snes, J));
   ++me->stats_.jacobians;
   me->jacobianValid_ = me->jacobianFresh_ = true;
   me->jacobianCtx_ = me->ctx;
   me->jacobianAge_ = 0;
+  PetscFunctionReturn(0);
+}
+
+// Factors the new iteration matrix here, before SNES's linear solve would,
+// so that a failure is recognised by its error code rather than by the text
+// of a message: KLU (and MUMPS with -ksp_error_if_not_converged) raise
+// PETSC_ERR_LIB when the numeric factorization breaks down, which for these
+// saddle-point matrices means they are singular. The library's own error is
+// kept out of the error log (PetscReturnErrorHandler) and replaced by one
+// that says what is wrong with the model. MUMPS otherwise records a factor
+// error without raising one; SNES then ends with DIVERGED_LINEAR_SOLVE and
+// the step is cut, as before. The solve that follows reuses this
+// factorization (the matrix state is unchanged).
+PetscErrorCode NewtonSolver::factor(SNES snes, Mat J)
+{
+  KSP ksp;
+  PC pc;
+  PetscFunctionBeginUser;
+  PetscCall(SNESGetKSP(snes, &ksp));
+  PetscCall(KSPSetOperators(ksp, J, J));
+  PetscCall(KSPGetPC(ksp, &pc));
+  PetscCall(PetscPushErrorHandler(PetscReturnErrorHandler, nullptr));
+  const PetscErrorCode ierr = PCSetUp(pc);
+  PetscCall(PetscPopErrorHandler());
+  PetscCheck(ierr != PETSC_ERR_LIB, PetscObjectComm((PetscObject)snes), PETSC_ERR_MAT_LU_ZRPVT,
+             "the system matrix is singular: a body or motion without support, or redundant or contradictory "
+             "constraints (two drives on one joint, a clamp plus an angle drive at one point, ...); the direct "
+             "solver's LU decomposition broke down");
+  PetscCheck(ierr == 0, PetscObjectComm((PetscObject)snes), ierr,
+             "the direct solver failed to set up (PETSc error code %d; run with -on_error_abort for its trace)", (int)ierr);
   PetscFunctionReturn(0);
 }
 
