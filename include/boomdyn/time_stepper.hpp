@@ -44,4 +44,10 @@ PetscErrorCode integrate(GeneralizedAlpha &integrator, const DynamicSpec &spec,
                          const std::function<PetscErrorCode(const StepInfo &)> &onStep, RunSummary *summary,
                          StepperState *state = nullptr, const std::function<bool()> &stop = {});
 
+// Checkpoints of the step controller (keys stepper.h, stepper.successes,
+// stepper.steps, stepper.rejected, stepper.newton). restoreStepper throws
+// std::runtime_error naming the file when a key is missing.
+PetscErrorCode saveStepper(CheckpointWriter &out, const StepperState &state);
+PetscErrorCode restoreStepper(const CheckpointReader &in, StepperState *state);
+
 } // namespace boomdyn

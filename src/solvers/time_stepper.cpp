@@ -112,4 +112,26 @@ PetscErrorCode integrate(GeneralizedAlpha &integrator, const DynamicSpec &spec,
   PetscFunctionReturn(0);
 }
 
+PetscErrorCode saveStepper(CheckpointWriter &out, const StepperState &state)
+{
+  PetscFunctionBeginUser;
+  out.addScalar("stepper.h", state.h);
+  out.addScalar("stepper.successes", state.successesSinceCut);
+  out.addScalar("stepper.steps", state.steps);
+  out.addScalar("stepper.rejected", state.rejected);
+  out.addScalar("stepper.newton", state.newtonIterations);
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode restoreStepper(const CheckpointReader &in, StepperState *state)
+{
+  PetscFunctionBeginUser;
+  state->h = in.scalar("stepper.h");
+  state->successesSinceCut = static_cast<int>(in.scalar("stepper.successes"));
+  state->steps = static_cast<PetscInt>(in.scalar("stepper.steps"));
+  state->rejected = static_cast<PetscInt>(in.scalar("stepper.rejected"));
+  state->newtonIterations = static_cast<PetscInt>(in.scalar("stepper.newton"));
+  PetscFunctionReturn(0);
+}
+
 } // namespace boomdyn
