@@ -121,14 +121,11 @@ PetscErrorCode solveModes(Assembler &assembler, double t, Vec q, Vec lambda, int
     PetscReal backward;
     PetscCall(EPSComputeError(eps, i, EPS_ERROR_BACKWARD, &backward));
     const bool converged = err < 1e-6 || (backward < 1e-10 && w > 1e-2);
-    if (!converged)
-    {
-      char values[96];
-      std::snprintf(values, sizeof values, "%.3g rad^2/s^2) did not converge (relative residual %.3g", (double)w, (double)err);
-      throw std::runtime_error("eigen-analysis: eigenpair " + std::to_string(k + 1) + " (" + values +
-                               "): the stiffness is singular, the system is a mechanism with rigid-body modes "
-                               "(a body or motion without support)");
-    }
+    // A model error found by the analysis: reported like the user errors (one line, no location).
+    PetscCheck(converged, PetscObjectComm((PetscObject)eps), PETSC_ERR_NOT_CONVERGED,
+               "eigen-analysis: eigenpair %" PetscInt_FMT " (%.3g rad^2/s^2) did not converge (relative residual %.3g): "
+               "the stiffness is singular, the system is a mechanism with rigid-body modes (a body or motion without "
+               "support)", (PetscInt)(k + 1), (double)w, (double)err);
     if (options.keepVectors) {
       Vec v;
       PetscCall(VecDuplicate(xr, &v));

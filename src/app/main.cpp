@@ -42,10 +42,13 @@ PetscErrorCode keepFirstError(MPI_Comm, int line, const char *function, const ch
     PetscErrorMessage(n, &text, nullptr);
     firstPetscError = message && *message ? message : (text ? text : "PETSc error");
     firstPetscErrorCode = n;
-    // User errors raised by the program itself (options, scene, run) say
-    // all there is to say; solver errors name where they arose.
+    // User errors (bad options, scene, model; the io layer's exceptions,
+    // which cross into PETSc code in src/app and src/simulation) say all
+    // there is to say; other errors name where they arose.
     const std::string where = file ? file : "?";
-    if (where.find("src/app/") == std::string::npos && where.find("src/simulation/") == std::string::npos)
+    const bool userError = n == PETSC_ERR_USER_INPUT || n == PETSC_ERR_NOT_CONVERGED ||
+                           where.find("src/app/") != std::string::npos || where.find("src/simulation/") != std::string::npos;
+    if (!userError)
       firstPetscError += " (in " + std::string(function ? function : "?") + ", " + where + ":" + std::to_string(line) + ")";
   }
   return n;

@@ -56,7 +56,10 @@ PetscErrorCode Simulation::runDynamic(const std::function<bool()> &stop)
                             options_.restartPath.c_str(), integrator_->time(), stepper_.steps));
   } else {
     stepper_ = StepperState{};
-    PetscCall(integrator_->initialize(0.0, x_, zero_));
+    // A mechanism without consistent accelerations is reported by exception.
+    PetscErrorCode ierr = 0;
+    PetscCallCXX(ierr = integrator_->initialize(0.0, x_, zero_));
+    PetscCall(ierr);
     PetscCall(dynamicState(&state));
     outcome_.maxViolation = state.violation;
   }
