@@ -9,6 +9,7 @@
 
 #include <cstdlib>
 #include <memory>
+#include <vector>
 
 namespace boomdyn {
 
@@ -73,8 +74,10 @@ PetscErrorCode reportPartitions(const Scene &scene, PetscInt parts)
                         scene.name.c_str(), model->items().size(), model->size(), p));
   PetscCall(PetscPrintf(PETSC_COMM_WORLD, "%-12s %10s %10s %10s  items per part\n", "partition", "interface", "cut edges",
                         "imbalance"));
-  for (const PartitionQuality &q : {evaluatePartition(*model, contiguousPartition(*model, p), p, "contiguous"),
-                                    evaluatePartition(*model, metisPartition(*model, p), p, "METIS k-way")}) {
+  std::vector<PartitionQuality> qualities; // METIS failures are reported by exception
+  PetscCallCXX(qualities = {evaluatePartition(*model, contiguousPartition(*model, p), p, "contiguous"),
+                            evaluatePartition(*model, metisPartition(*model, p), p, "METIS k-way")});
+  for (const PartitionQuality &q : qualities) {
     std::string counts;
     for (int n : q.itemsPerPart) counts += " " + std::to_string(n);
     PetscCall(PetscPrintf(PETSC_COMM_WORLD, "%-12s %10d %10d %10.3f %s\n", q.method.c_str(), q.interfaceUnknowns,
