@@ -1,20 +1,20 @@
-// In-process drivers for verification and regression tests: run a scene's
-// static or dynamic analysis through the library and return what the tests
-// compare (sensor readings, energy, constraint violation per step).
+// Runs for verification and regression tests: a scene's static or dynamic
+// analysis through the same Simulation object as the program
+// (include/boomdyn/simulation.hpp), without output files; a recording
+// monitor returns what the tests compare (sensor readings, energy,
+// constraint violation per step).
 #pragma once
 
-#include "boomdyn/assembler.hpp"
-#include "boomdyn/generalized_alpha.hpp"
+#include "boomdyn/monitor.hpp"
 #include "boomdyn/scene_reader.hpp"
-#include "boomdyn/sensors.hpp"
-#include "boomdyn/static_solver.hpp"
-#include "boomdyn/time_stepper.hpp"
+#include "boomdyn/simulation.hpp"
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -42,31 +42,48 @@ struct StaticOutcome {
   double violation = 0;
 };
 
+// A simulation without output files, modal analysis, energy check or
+// messages: what the tests observe comes from their own monitor.
+inline SimulationOptions testOptions(double errorTolerance = 0)
+{
+  SimulationOptions o;
+  o.energyTolerance = 0;
+  o.adaptiveTolerance = errorTolerance;
+  o.modal = false;
+  o.quiet = true;
+  o.warnings = false;
+  return o;
+}
+
+// Sensors and constraint violation at the end of a static run.
+class StaticRecorder : public Monitor {
+public:
+  StaticRecorder(Simulation &sim, StaticOutcome &out) : sim_(sim), out_(out) {}
+  PetscErrorCode finish(const RunState &s, const RunOutcome &outcome) override
+  {
+    AssemblyContext ctx;
+    PetscReal violation;
+    PetscFunctionBeginUser;
+    out_.converged = outcome.completed();
+    PetscCall(sim_.sensors().read(s.q, s.v, out_.sensors));
+    PetscCall(sim_.assembler().setOffsets(nullptr, nullptr, nullptr));
+    PetscCall(sim_.assembler().diagnostics(ctx, s.q, nullptr, &violation));
+    out_.violation = violation;
+    PetscFunctionReturn(0);
+  }
+
+private:
+  Simulation &sim_;
+  StaticOutcome &out_;
+};
+
 inline StaticOutcome runStatic(const Scene &scene, MPI_Comm comm = PETSC_COMM_WORLD)
 {
   StaticOutcome out;
-  Model model(scene);
-  Assembler assembler(model);
-  check(assembler.setUp(comm));
-  Vec x, zero;
-  check(assembler.createVector(&x));
-  check(assembler.createVector(&zero));
-  check(assembler.initialState(x));
-  StaticSolver solver(assembler);
-  check(solver.setUp());
-  PetscBool converged;
-  check(solver.solve(scene.statics.time, scene.statics.load_steps, x, nullptr, &converged));
-  out.converged = converged;
-  SensorProbe probe(model);
-  check(probe.setUp(x));
-  check(probe.read(x, zero, out.sensors));
-  AssemblyContext ctx;
-  check(assembler.setOffsets(nullptr, nullptr, nullptr));
-  double v;
-  check(assembler.diagnostics(ctx, x, nullptr, &v));
-  out.violation = v;
-  VecDestroy(&x);
-  VecDestroy(&zero);
+  Simulation sim(scene, comm, testOptions());
+  check(sim.setUp());
+  sim.addMonitor(std::make_unique<StaticRecorder>(sim, out));
+  check(sim.run());
   return out;
 }
 
@@ -102,53 +119,54 @@ inline std::vector<double> gatherAll(Vec v)
   return out;
 }
 
+// Every accepted step of a dynamic run (and the start), into a DynamicHistory.
+class HistoryRecorder : public Monitor {
+public:
+  HistoryRecorder(Simulation &sim, DynamicHistory &h) : sim_(sim), h_(h) {}
+  PetscErrorCode start(const RunState &s, bool) override { return record(s); }
+  PetscErrorCode afterStep(const RunState &s, std::string *) override { return record(s); }
+
+private:
+  PetscErrorCode record(const RunState &s)
+  {
+    std::vector<SensorReading> r;
+    PetscFunctionBeginUser;
+    PetscCall(sim_.sensors().read(s.q, s.v, r));
+    h_.time.push_back(s.t);
+    h_.violation.push_back(s.violation);
+    h_.energy.push_back(s.energy.kinetic + s.energy.strain + s.energy.potential);
+    h_.inputPower.push_back(s.energy.inputPower);
+    h_.energyParts.push_back(s.energy);
+    h_.sensors.push_back(r);
+    const Model &model = sim_.model();
+    const std::vector<double> lam = gatherAll(s.lambda), q = gatherAll(s.q);
+    h_.multipliers.emplace_back(lam.begin() + model.numCoordinates(), lam.end());
+    std::vector<double> slack;
+    for (const auto &j : model.slidingJoints()) slack.push_back(q[j->slackIndex()]);
+    h_.slacks.push_back(slack);
+    PetscFunctionReturn(0);
+  }
+
+  Simulation &sim_;
+  DynamicHistory &h_;
+};
+
 inline DynamicHistory runDynamic(const Scene &scene, MPI_Comm comm = PETSC_COMM_WORLD, double errorTolerance = 0)
 {
   DynamicHistory h;
-  Model model(scene);
-  Assembler assembler(model);
-  check(assembler.setUp(comm));
-  Vec x, zero;
-  check(assembler.createVector(&x));
-  check(assembler.createVector(&zero));
-  check(assembler.initialState(x));
-  GeneralizedAlpha integrator(assembler, scene.dynamic.rho_inf);
-  check(integrator.setUp(scene.dynamic.max_newton));
-  integrator.setErrorTolerance(errorTolerance);
-  check(integrator.initialize(0.0, x, zero));
-  SensorProbe probe(model);
-  check(probe.setUp(x));
-  auto record = [&](double t) -> PetscErrorCode {
-    EnergyParts e;
-    PetscReal viol;
-    std::vector<SensorReading> r;
-    PetscFunctionBeginUser;
-    PetscCall(integrator.diagnostics(&e, &viol));
-    PetscCall(probe.read(integrator.positions(), integrator.velocities(), r));
-    h.time.push_back(t);
-    h.violation.push_back(viol);
-    h.energy.push_back(e.kinetic + e.strain + e.potential);
-    h.inputPower.push_back(e.inputPower);
-    h.energyParts.push_back(e);
-    h.sensors.push_back(r);
-    const std::vector<double> lam = gatherAll(integrator.multipliers()), q = gatherAll(integrator.positions());
-    h.multipliers.emplace_back(lam.begin() + model.numCoordinates(), lam.end());
-    std::vector<double> slack;
-    for (const auto &j : model.slidingJoints()) slack.push_back(q[j->slackIndex()]);
-    h.slacks.push_back(slack);
-    PetscFunctionReturn(0);
-  };
-  check(record(0.0));
-  check(integrate(integrator, scene.dynamic, [&](const StepInfo &s) { return record(s.t); }, &h.summary));
+  Simulation sim(scene, comm, testOptions(errorTolerance));
+  check(sim.setUp());
+  sim.addMonitor(std::make_unique<HistoryRecorder>(sim, h));
+  check(sim.run());
+  h.summary = sim.summary();
   // Final q and v on every rank, for comparisons across rank counts.
+  GeneralizedAlpha &integrator = *sim.integrator();
   for (Vec v : {integrator.positions(), integrator.velocities()}) {
     const std::vector<double> all = gatherAll(v);
-    h.finalState.insert(h.finalState.end(), all.begin(), all.begin() + model.numCoordinates());
+    h.finalState.insert(h.finalState.end(), all.begin(), all.begin() + sim.model().numCoordinates());
   }
   h.newton = integrator.newton().statistics();
-  h.patternVersion = assembler.patternVersion();
-  VecDestroy(&x);
-  VecDestroy(&zero);
+  h.patternVersion = sim.assembler().patternVersion();
   return h;
 }
 

@@ -39,11 +39,13 @@ class CheckpointReader : public StateReader {
 public:
   explicit CheckpointReader(MPI_Comm comm) : comm_(comm) {}
   // Collective: reads the file on rank 0 and broadcasts scalars and arrays.
-  // Throws std::runtime_error naming the file when it cannot be read.
+  // A file that cannot be read is a user error (PETSC_ERR_USER_INPUT) naming it.
   PetscErrorCode read(const std::string &path);
   // Collective: fills a distributed vector of the right global size.
   PetscErrorCode getVector(const std::string &name, Vec v) const override;
   bool hasVector(const std::string &name) const { return vectorNames_.count(name) > 0; }
+  // Throw std::runtime_error naming the file when the value is missing
+  // (callers restore inside PetscCallCXX: Simulation::runDynamic).
   double scalar(const std::string &name) const override;
   const std::vector<double> &array(const std::string &name) const override;
   const std::string &sceneText() const { return sceneText_; }

@@ -8,6 +8,7 @@
 #pragma once
 
 #include "boomdyn/assembler.hpp"
+#include "boomdyn/petsc_handle.hpp"
 
 #include <vector>
 
@@ -20,22 +21,7 @@ struct ModalResult {
   std::vector<double> residuals;         // relative residual norms ||A x - w B x|| / ||x||
   // Eigenvectors in the layout of x with the multiplier part zeroed (only
   // when asked for; owned here).
-  std::vector<Vec> vectors;
-
-  ModalResult() = default;
-  ModalResult(const ModalResult &) = delete;
-  ModalResult &operator=(const ModalResult &) = delete;
-  ModalResult(ModalResult &&) = default;
-  ModalResult &operator=(ModalResult &&other) noexcept
-  {
-    std::swap(omega2, other.omega2), std::swap(frequencyHz, other.frequencyHz), std::swap(shapes, other.shapes);
-    std::swap(residuals, other.residuals), std::swap(vectors, other.vectors);
-    return *this;
-  }
-  ~ModalResult()
-  {
-    for (Vec &v : vectors) (void)VecDestroy(&v);
-  }
+  std::vector<PetscHandle<Vec>> vectors;
 };
 
 struct ModalOptions {

@@ -8,6 +8,7 @@
 
 #include "boomdyn/checkpoint.hpp"
 #include "boomdyn/eigen_solver.hpp"
+#include "boomdyn/petsc_handle.hpp"
 
 namespace boomdyn {
 
@@ -23,9 +24,6 @@ struct TrackedModes {
 class FrequencyTracker {
 public:
   FrequencyTracker(Assembler &assembler, int count) : assembler_(assembler), count_(count) {}
-  ~FrequencyTracker();
-  FrequencyTracker(const FrequencyTracker &) = delete;
-  FrequencyTracker &operator=(const FrequencyTracker &) = delete;
 
   PetscErrorCode analyze(double t, Vec q, Vec lambda, TrackedModes *out);
   // The followed shape and eigenvalue, for checkpoints.
@@ -35,7 +33,7 @@ public:
 private:
   Assembler &assembler_;
   int count_;
-  Vec previous_ = nullptr;
+  PetscHandle<Vec> previous_; // the followed shape (none before the first analysis)
   double previousOmega2_ = 0;
 };
 

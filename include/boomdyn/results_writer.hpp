@@ -7,6 +7,7 @@
 #include "boomdyn/frequency_tracker.hpp"
 #include "boomdyn/hdf5_file.hpp"
 #include "boomdyn/model.hpp"
+#include "boomdyn/petsc_handle.hpp"
 #include "boomdyn/sensors.hpp"
 #include "boomdyn/stick_slip.hpp"
 
@@ -26,6 +27,8 @@ struct RunInfo {
 class ResultsWriter {
 public:
   ResultsWriter(const Model &model, MPI_Comm comm) : model_(model), comm_(comm) {}
+  // Closes a file left open by an error that unwound the run, marking it
+  // as failed (an HDF5 file, not a PETSc object; these live in handles).
   ~ResultsWriter();
   ResultsWriter(const ResultsWriter &) = delete;
   ResultsWriter &operator=(const ResultsWriter &) = delete;
@@ -73,8 +76,8 @@ private:
   int rank_ = 0;
   std::string path_;
   std::unique_ptr<Hdf5File> file_;
-  VecScatter toZero_ = nullptr;
-  Vec gathered_ = nullptr;
+  PetscHandle<VecScatter> toZero_;
+  PetscHandle<Vec> gathered_;
   PetscInt slackRopeSteps_ = 0;
   double energyBalance_[3] = {0, 0, 0};
   bool hasEnergyBalance_ = false;

@@ -3,6 +3,7 @@
 #pragma once
 
 #include "boomdyn/model.hpp"
+#include "boomdyn/petsc_handle.hpp"
 
 #include <petscvec.h>
 
@@ -17,9 +18,6 @@ struct SensorReading {
 class SensorProbe {
 public:
   explicit SensorProbe(const Model &model) : model_(model) {}
-  ~SensorProbe();
-  SensorProbe(const SensorProbe &) = delete;
-  SensorProbe &operator=(const SensorProbe &) = delete;
 
   // layout: any vector with the layout of x.
   PetscErrorCode setUp(Vec layout);
@@ -36,10 +34,8 @@ public:
 private:
   const Model &model_;
   std::vector<CenterlineLocation> locations_;
-  VecScatter scatter_ = nullptr, slackScatter_ = nullptr, lambdaScatter_ = nullptr, frameScatter_ = nullptr;
-  VecScatter frictionScatter_ = nullptr, normalScatter_ = nullptr;
-  Vec gathered_ = nullptr, slacks_ = nullptr, multipliers_ = nullptr, frameValues_ = nullptr;
-  Vec frictionValues_ = nullptr, normalValues_ = nullptr;
+  PetscHandle<VecScatter> scatter_, slackScatter_, lambdaScatter_, frameScatter_, frictionScatter_, normalScatter_;
+  PetscHandle<Vec> gathered_, slacks_, multipliers_, frameValues_, frictionValues_, normalValues_;
   struct Frame {
     const Body *body;
     double s;        // material point measured

@@ -17,13 +17,20 @@
 
 namespace boomdyn {
 
+template <>
+struct PetscDestroyer<EPS> {
+  static PetscErrorCode destroy(EPS *eps) { return EPSDestroy(eps); }
+};
+
 PetscErrorCode solveModes(Assembler &assembler, double t, Vec q, Vec lambda, int count, ModalResult *result,
                           const ModalOptions &options)
 {
   const PetscInt nq = assembler.model().numCoordinates();
-  Mat A, B;
-  Vec x, xr;
-  EPS eps;
+  // Owned by handles: an error (an eigenpair that did not converge) leaks nothing.
+  PetscHandle<Mat> A, B;
+  PetscHandle<Vec> x, xr, gathered, zero;
+  PetscHandle<EPS> eps;
+  PetscHandle<VecScatter> toZero;
   ST st;
   KSP ksp;
   PetscFunctionBeginUser;
@@ -35,7 +42,7 @@ PetscErrorCode solveModes(Assembler &assembler, double t, Vec q, Vec lambda, int
   PetscReal massScale, stiffScale;
   PetscCall(assembler.characteristicScales(q, &massScale, &stiffScale));
   const double sigma = stiffScale > 0 ? stiffScale : 1.0;
-  PetscCall(assembler.createVector(&x));
+  PetscCall(assembler.createVector(x.address()));
   {
     PetscInt lo, hi;
     const PetscScalar *qa, *la;
@@ -53,8 +60,8 @@ PetscErrorCode solveModes(Assembler &assembler, double t, Vec q, Vec lambda, int
   ctx.t = t;
   ctx.sigma = sigma;
   PetscCall(assembler.setOffsets(nullptr, nullptr, nullptr));
-  PetscCall(assembler.createMatrix(&A));
-  PetscCall(assembler.createMatrix(&B));
+  PetscCall(assembler.createMatrix(A.address()));
+  PetscCall(assembler.createMatrix(B.address()));
   ctx.kin = {1.0, 0.0, 0.0};
   PetscCall(assembler.evaluate(ctx, x, nullptr, A));
   // B: the same pattern as A (explicit zeros), so ST can combine them cheaply.
@@ -63,7 +70,7 @@ PetscErrorCode solveModes(Assembler &assembler, double t, Vec q, Vec lambda, int
   PetscCall(assembler.setOffsets(x, nullptr, nullptr)); // q = x (cQ = 0), so every kernel sees the real state
   PetscCall(assembler.evaluate(ctx, x, nullptr, B));
 
-  PetscCall(EPSCreate(assembler.comm(), &eps));
+  PetscCall(EPSCreate(assembler.comm(), eps.address()));
   PetscCall(EPSSetOptionsPrefix(eps, "modal_"));
   PetscCall(EPSSetOperators(eps, A, B));
   PetscCall(EPSSetProblemType(eps, EPS_GHEP));
@@ -98,13 +105,10 @@ PetscErrorCode solveModes(Assembler &assembler, double t, Vec q, Vec lambda, int
 
   PetscMPIInt rank;
   PetscCallMPI(MPI_Comm_rank(assembler.comm(), &rank));
-  VecScatter toZero;
-  PetscCall(MatCreateVecs(A, &xr, nullptr));
-  Vec gathered;
-  PetscCall(VecScatterCreateToZero(xr, &toZero, &gathered));
+  PetscCall(MatCreateVecs(A, xr.address(), nullptr));
+  PetscCall(VecScatterCreateToZero(xr, toZero.address(), gathered.address()));
   *result = ModalResult{};
-  Vec zero;
-  PetscCall(VecDuplicate(xr, &zero));
+  PetscCall(VecDuplicate(xr, zero.address()));
   PetscCall(VecSet(zero, 0.0));
   for (int k = 0; k < count; ++k) {
     const PetscInt i = order[k];
@@ -121,20 +125,17 @@ PetscErrorCode solveModes(Assembler &assembler, double t, Vec q, Vec lambda, int
     PetscReal backward;
     PetscCall(EPSComputeError(eps, i, EPS_ERROR_BACKWARD, &backward));
     const bool converged = err < 1e-6 || (backward < 1e-10 && w > 1e-2);
-    if (!converged)
-    {
-      char values[96];
-      std::snprintf(values, sizeof values, "%.3g rad^2/s^2) did not converge (relative residual %.3g", (double)w, (double)err);
-      throw std::runtime_error("eigen-analysis: eigenpair " + std::to_string(k + 1) + " (" + values +
-                               "): the stiffness is singular, the system is a mechanism with rigid-body modes "
-                               "(a body or motion without support)");
-    }
+    // A model error found by the analysis: reported like the user errors (one line, no location).
+    PetscCheck(converged, assembler.comm(), PETSC_ERR_NOT_CONVERGED,
+               "eigen-analysis: eigenpair %" PetscInt_FMT " (%.3g rad^2/s^2) did not converge (relative residual %.3g): "
+               "the stiffness is singular, the system is a mechanism with rigid-body modes (a body or motion without "
+               "support)", (PetscInt)(k + 1), (double)w, (double)err);
     if (options.keepVectors) {
-      Vec v;
-      PetscCall(VecDuplicate(xr, &v));
+      PetscHandle<Vec> v;
+      PetscCall(VecDuplicate(xr, v.address()));
       PetscCall(VecCopy(xr, v));
       PetscCall(assembler.copyMultipliers(zero, v, 0.0)); // shape only: drop the multiplier part
-      result->vectors.push_back(v);
+      result->vectors.push_back(std::move(v));
     }
     result->omega2.push_back(w);
     result->frequencyHz.push_back(std::sqrt(std::max(w, 0.0)) / (2.0 * M_PI));
@@ -152,14 +153,6 @@ PetscErrorCode solveModes(Assembler &assembler, double t, Vec q, Vec lambda, int
       result->shapes.push_back(std::move(shape));
     }
   }
-  PetscCall(VecDestroy(&zero));
-  PetscCall(VecScatterDestroy(&toZero));
-  PetscCall(VecDestroy(&gathered));
-  PetscCall(VecDestroy(&xr));
-  PetscCall(EPSDestroy(&eps));
-  PetscCall(MatDestroy(&A));
-  PetscCall(MatDestroy(&B));
-  PetscCall(VecDestroy(&x));
   PetscCall(PetscLogEventEnd(logEvents().eigen, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }

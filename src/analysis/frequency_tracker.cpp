@@ -4,11 +4,6 @@
 
 namespace boomdyn {
 
-FrequencyTracker::~FrequencyTracker()
-{
-  if (previous_) (void)VecDestroy(&previous_);
-}
-
 PetscErrorCode modalAssurance(Vec a, Vec b, double *mac)
 {
   PetscScalar ab, aa, bb;
@@ -33,7 +28,7 @@ PetscErrorCode FrequencyTracker::restore(const CheckpointReader &in)
 {
   PetscFunctionBeginUser;
   if (in.scalar("tracker.started") != 0.0) {
-    if (!previous_) PetscCall(assembler_.createVector(&previous_));
+    if (!previous_) PetscCall(assembler_.createVector(previous_.address()));
     PetscCall(in.getVector("tracker.shape", previous_));
   }
   previousOmega2_ = in.scalar("tracker.omega2");
@@ -58,7 +53,7 @@ PetscErrorCode FrequencyTracker::analyze(double t, Vec q, Vec lambda, TrackedMod
     // Skip rigid-body modes of a mechanism (omega^2 ~ 0 relative to the spectrum).
     const double scale = std::abs(modes.omega2.back());
     while (pick + 1 < (int)modes.omega2.size() && modes.omega2[pick] <= 1e-8 * scale) ++pick;
-    PetscCall(VecDuplicate(modes.vectors[pick], &previous_));
+    PetscCall(VecDuplicate(modes.vectors[pick], previous_.address()));
   } else {
     best = -1.0;
     for (int k = 0; k < (int)modes.vectors.size(); ++k) {

@@ -8,14 +8,6 @@
 
 namespace boomdyn {
 
-SensorProbe::~SensorProbe()
-{
-  for (VecScatter *sc : {&scatter_, &slackScatter_, &lambdaScatter_, &frameScatter_, &frictionScatter_, &normalScatter_})
-    if (*sc) (void)VecScatterDestroy(sc);
-  for (Vec *v : {&gathered_, &slacks_, &multipliers_, &frameValues_, &frictionValues_, &normalValues_})
-    if (*v) (void)VecDestroy(v);
-}
-
 // A scatter of the given global indices of `layout` to a sequential vector on rank 0.
 static PetscErrorCode scatterToRankZero(Vec layout, int rank, const std::vector<PetscInt> &idx, VecScatter *sc, Vec *out)
 {
@@ -90,12 +82,12 @@ PetscErrorCode SensorProbe::setUp(Vec layout)
     idx.insert(idx.end(), loc.dofs.begin(), loc.dofs.begin() + loc.count);
   }
   // Rank 0 receives every sensor's coordinates; the other ranks ask for none.
-  PetscCall(scatterToRankZero(layout, rank_, idx, &scatter_, &gathered_));
+  PetscCall(scatterToRankZero(layout, rank_, idx, scatter_.address(), gathered_.address()));
   std::vector<PetscInt> slack, rows;
   for (const auto &j : model_.slidingJoints()) slack.push_back(j->slackIndex());
   for (PetscInt r = 0; r < model_.numMultipliers(); ++r) rows.push_back(model_.numCoordinates() + r);
-  PetscCall(scatterToRankZero(layout, rank_, slack, &slackScatter_, &slacks_));
-  PetscCall(scatterToRankZero(layout, rank_, rows, &lambdaScatter_, &multipliers_));
+  PetscCall(scatterToRankZero(layout, rank_, slack, slackScatter_.address(), slacks_.address()));
+  PetscCall(scatterToRankZero(layout, rank_, rows, lambdaScatter_.address(), multipliers_.address()));
   // Frame sensors: the whole body (the axis point moves along it) and the joint's slack coordinate.
   std::vector<PetscInt> frameIdx;
   for (const FrameSensor &f : model_.frameSensors()) {
@@ -107,15 +99,15 @@ PetscErrorCode SensorProbe::setUp(Vec layout)
     for (PetscInt k = 0; k < body->numCoordinates(); ++k) frameIdx.push_back(body->firstCoordinate() + k);
     frameIdx.push_back(slack);
   }
-  PetscCall(scatterToRankZero(layout, rank_, frameIdx, &frameScatter_, &frameValues_));
+  PetscCall(scatterToRankZero(layout, rank_, frameIdx, frameScatter_.address(), frameValues_.address()));
   std::vector<PetscInt> frictionIdx, normalIdx;
   for (const LuGreFriction *f : model_.frictions()) {
     frictionIdx.push_back(f->joint().slackIndex());
     frictionIdx.push_back(f->stateIndex());
     normalIdx.push_back(f->normalRow());
   }
-  PetscCall(scatterToRankZero(layout, rank_, frictionIdx, &frictionScatter_, &frictionValues_));
-  PetscCall(scatterToRankZero(layout, rank_, normalIdx, &normalScatter_, &normalValues_));
+  PetscCall(scatterToRankZero(layout, rank_, frictionIdx, frictionScatter_.address(), frictionValues_.address()));
+  PetscCall(scatterToRankZero(layout, rank_, normalIdx, normalScatter_.address(), normalValues_.address()));
   PetscFunctionReturn(0);
 }
 

@@ -3,36 +3,36 @@
 //   boomdyn SCENE.yaml [-o OUT.h5] [-boom_overwrite] [-boom_quiet] [PETSc options]
 //
 // Reads a scene (docs/scenes.md), runs its static, dynamic or modal
-// analysis and writes an HDF5 results file (docs/output.md).
+// analysis and writes an HDF5 results file (docs/output.md). This file is
+// the error reporting; options.cpp reads the options, run.cpp builds the
+// Simulation (include/boomdyn/simulation.hpp).
 #include "options.hpp"
 #include "run.hpp"
 #include "signals.hpp"
 
-#include "boomdyn/model.hpp"
 #include "boomdyn/scene_reader.hpp"
 
 #include <slepcsys.h>
 
 #include <chrono>
 #include <cstdio>
-#include <thread>
 #include <exception>
-#include <new>
+#include <memory>
 #include <string>
+#include <thread>
 
-static const char help[] = "boomdyn SCENE.yaml [-o OUT.h5] [-boom_overwrite] [-boom_quiet] [-boom_elements N]\n"
-                           "  [-boom_elements_<body> N] [-ts_dt h] [-ts_max_time T] [-boom_rho_inf r]\n"
-                           "  [-boom_state_interval dt] [-boom_modal_count k] [-boom_load_steps n]\n"
-                           "  [-boom_tracking_interval dt] [-boom_checkpoint_interval dt] [-boom_checkpoint FILE]\n"
-                           "  [-boom_restart FILE] [PETSc options]\n";
+static const char help[] = "boomdyn SCENE.yaml [-o OUT.h5] [-boom_overwrite] [-boom_quiet] [boomdyn and PETSc options]\n"
+                           "(boomdyn -help lists every option with its default; README.md describes them)\n";
 
 namespace {
 
-// PETSc errors (a failed factorization, a bad option value, ...) are reported
-// as one line naming the scene, like every other error, instead of PETSc's
+// PETSc errors (a failed factorization, a bad option value, a bad scene
+// reported by the io layer through PetscCallCXX, ...) are reported as one
+// line naming the scene, like every other error, instead of PETSc's
 // traceback and an MPI_Abort: the handler keeps the first message and lets
 // the error code travel up to main.
 std::string firstPetscError;
+PetscErrorCode firstPetscErrorCode = 0;
 
 PetscErrorCode keepFirstError(MPI_Comm, int line, const char *function, const char *file, PetscErrorCode n,
                               PetscErrorType type, const char *message, void *)
@@ -40,8 +40,16 @@ PetscErrorCode keepFirstError(MPI_Comm, int line, const char *function, const ch
   if (type == PETSC_ERROR_INITIAL && firstPetscError.empty()) {
     const char *text = nullptr;
     PetscErrorMessage(n, &text, nullptr);
-    firstPetscError = std::string(message && *message ? message : (text ? text : "PETSc error")) + " (in " +
-                      (function ? function : "?") + ", " + (file ? file : "?") + ":" + std::to_string(line) + ")";
+    firstPetscError = message && *message ? message : (text ? text : "PETSc error");
+    firstPetscErrorCode = n;
+    // User errors (bad options, scene, model; the io layer's exceptions,
+    // which cross into PETSc code in src/app and src/simulation) say all
+    // there is to say; other errors name where they arose.
+    const std::string where = file ? file : "?";
+    const bool userError = n == PETSC_ERR_USER_INPUT || n == PETSC_ERR_NOT_CONVERGED ||
+                           where.find("src/app/") != std::string::npos || where.find("src/simulation/") != std::string::npos;
+    if (!userError)
+      firstPetscError += " (in " + std::string(function ? function : "?") + ", " + where + ":" + std::to_string(line) + ")";
   }
   return n;
 }
@@ -52,13 +60,28 @@ std::string aboutScene(const std::string &message, const std::string &scene)
   return scene.empty() || message.find(scene) != std::string::npos ? message : scene + ": " + message;
 }
 
+// The line that tells the user why the run failed.
+std::string errorLine(const std::string &scene)
+{
+  std::string message = firstPetscError;
+  if (firstPetscErrorCode == PETSC_ERR_MEM || message.find("std::bad_alloc") != std::string::npos)
+    message = "out of memory: the scene needs more memory than this machine has (a mesh too large? see -boom_elements)";
+  // A failed LU factorization of the saddle-point system means it is singular.
+  else if (message.find("actorization") != std::string::npos || message.find("MUMPS") != std::string::npos ||
+           message.find("pivot") != std::string::npos)
+    message = "the system matrix is singular: a body or motion without support, or redundant or contradictory "
+              "constraints (two drives on one joint, a clamp plus an angle drive at one point, ...); solver said: " +
+              message;
+  return "boomdyn: error: " + aboutScene(message, scene);
+}
+
 // Every rank ends here, with its error line (empty: success). An error that
 // only some ranks met leaves the others waiting in a collective call
 // forever: a failing rank that does not see the others arrive within
 // -boom_error_wait seconds prints its own message and aborts the job. When
 // all arrive, rank 0 prints its message, or the first failing rank prints
 // its own if rank 0 has none, and all exit with the largest code.
-PetscErrorCode reportTogether(const std::string &line, int *code)
+PetscErrorCode reportTogether(const std::string &line, double wait, int *code)
 {
   PetscMPIInt size, rank;
   PetscFunctionBeginUser;
@@ -68,8 +91,6 @@ PetscErrorCode reportTogether(const std::string &line, int *code)
     if (!line.empty()) PetscCall(PetscPrintf(PETSC_COMM_SELF, "%s\n", line.c_str()));
     PetscFunctionReturn(0);
   }
-  PetscReal wait = 30.0;
-  PetscCall(PetscOptionsGetReal(nullptr, "boom_", "-error_wait", &wait, nullptr));
   MPI_Request request;
   int arrived = 0;
   PetscCallMPI(MPI_Ibarrier(PETSC_COMM_WORLD, &request));
@@ -96,55 +117,52 @@ PetscErrorCode reportTogether(const std::string &line, int *code)
   PetscFunctionReturn(0);
 }
 
+// Options, scene, run. A failed or interrupted run sets line and code; its
+// results file is complete up to that point and says so in /summary.
+PetscErrorCode runProgram(int argc, char **argv, boomdyn::AppOptions *opts, std::string *line, int *code)
+{
+  std::unique_ptr<boomdyn::Scene> scene;
+  PetscFunctionBeginUser;
+  PetscCall(boomdyn::sceneArgument(argc, argv, &opts->scenePath));
+  // Scene errors (file, line, key) are reported by the reader by exception.
+  if (!opts->scenePath.empty())
+    PetscCallCXX(scene = std::make_unique<boomdyn::Scene>(boomdyn::readSceneFile(opts->scenePath)));
+  PetscCall(boomdyn::readAppOptions(scene.get(), opts));
+  if (!scene && opts->help) PetscFunctionReturn(0);
+  PetscCheck(scene, PETSC_COMM_WORLD, PETSC_ERR_USER_INPUT,
+             "usage: boomdyn SCENE.yaml [-o OUT.h5] [-boom_overwrite] [-boom_quiet] [PETSc options]; see README.md "
+             "(boomdyn -help lists every option)");
+  PetscCall(boomdyn::rejectUnknownOptions(scene.get()));
+  if (opts->partitionReport) PetscFunctionReturn(boomdyn::reportPartitions(*scene, opts->partitionParts));
+  boomdyn::installInterruptHandlers();
+  boomdyn::RunOutcome outcome;
+  PetscCall(boomdyn::runScene(*scene, *opts, argc, argv, &outcome));
+  if (outcome.interrupted()) {
+    *line = "boomdyn: run interrupted at t = " + std::to_string(outcome.endTime) + " s by signal " +
+            std::to_string(boomdyn::interruptSignal()) + "; results so far in " + opts->outputPath +
+            ", continue with -boom_restart " + opts->checkpointPath;
+    *code = 128 + boomdyn::interruptSignal();
+  } else if (!outcome.completed()) {
+    *line = "boomdyn: error: " + scene->file + ": run " + outcome.status + " (results so far in " + opts->outputPath + ")";
+    *code = 1;
+  }
+  PetscFunctionReturn(0);
+}
+
 } // namespace
 
 int main(int argc, char **argv)
 {
   PetscCall(PetscInitialize(&argc, &argv, nullptr, help));
   PetscCall(PetscPushErrorHandler(keepFirstError, nullptr));
+  boomdyn::AppOptions opts;
+  std::string line;
   int code = 0;
-  std::string scenePath, errorLine;
-  try {
-    boomdyn::AppOptions opts;
-    PetscErrorCode ierr = boomdyn::readAppOptions(argc, argv, &opts);
-    scenePath = opts.scenePath;
-    if (!ierr) {
-      boomdyn::Scene scene = boomdyn::readSceneFile(opts.scenePath);
-      ierr = boomdyn::applySceneOverrides(&scene);
-      PetscInt parts = 0;
-      PetscBool report = PETSC_FALSE;
-      if (!ierr) ierr = PetscOptionsGetInt(nullptr, "boom_", "-partition_report", &parts, &report);
-      if (!ierr && report) {
-        ierr = boomdyn::reportPartitions(scene, parts);
-      } else if (!ierr) {
-        boomdyn::installInterruptHandlers();
-        ierr = boomdyn::runScene(scene, opts, argc, argv);
-      }
-    }
-    if (ierr) {
-      // A failed LU factorization of the saddle-point system means it is singular.
-      std::string message = firstPetscError;
-      if (message.find("actorization") != std::string::npos || message.find("MUMPS") != std::string::npos ||
-          message.find("pivot") != std::string::npos)
-        message = "the system matrix is singular: a body or motion without support, or redundant or contradictory "
-                  "constraints (two drives on one joint, a clamp plus an angle drive at one point, ...); solver said: " +
-                  message;
-      errorLine = "boomdyn: error: " + aboutScene(message, scenePath);
-      code = 1;
-    }
-  } catch (const boomdyn::Interrupted &e) {
-    errorLine = std::string("boomdyn: ") + e.what();
-    code = 128 + boomdyn::interruptSignal();
-  } catch (const std::bad_alloc &) {
-    errorLine = "boomdyn: error: " + aboutScene("out of memory: the scene needs more memory than this machine has "
-                                                "(a mesh too large? see -boom_elements)", scenePath);
-    code = 1;
-  } catch (const std::exception &e) {
-    // Bad scenes and mechanisms: a clear message, a non-zero exit, no core dump.
-    errorLine = "boomdyn: error: " + aboutScene(e.what(), scenePath);
+  if (runProgram(argc, argv, &opts, &line, &code)) {
+    line = errorLine(opts.scenePath);
     code = 1;
   }
-  PetscCall(reportTogether(errorLine, &code));
+  PetscCall(reportTogether(line, opts.errorWait, &code));
   PetscCall(PetscPopErrorHandler()); // pushed above; unpopped it shows in -malloc_dump
   PetscBool slepc;
   PetscCall(SlepcInitialized(&slepc));

@@ -1,142 +1,265 @@
 #include "options.hpp"
 
-#include <cstring>
 #include <unistd.h>
-#include <stdexcept>
+
+#include <algorithm>
+#include <cstring>
+#include <sstream>
 #include <string>
+#include <type_traits>
+#include <vector>
 
 namespace boomdyn {
 
 namespace {
-// Bad options are user errors: a one-line message from main, not a PETSc traceback.
-void require(bool condition, const std::string &message)
+
+// Options of boomdyn read elsewhere than in this file, listed here so that
+// they are known to rejectUnknownOptions (their help comes with the solver).
+const char *const libraryOptions[] = {"-boom_jacobian_reuse", "-boom_jacobian_refresh_ratio", "-boom_jacobian_max_age",
+                                      "-boom_schur_dd"};
+
+// Options read in this file (filled by the Option* helpers as they go).
+std::vector<std::string> &appOptionNames()
 {
-  if (!condition) throw std::invalid_argument(message);
+  static std::vector<std::string> names;
+  return names;
 }
+
+std::string withoutExtension(const std::string &path, const std::string &extension)
+{
+  const auto dot = path.rfind(extension);
+  return dot != std::string::npos && dot + extension.size() == path.size() ? path.substr(0, dot) : path;
+}
+
+PetscErrorCode optionString(PetscOptionItems *PetscOptionsObject, const char *name, const char *help, std::string *value,
+                            PetscBool *set = nullptr)
+{
+  char buf[PETSC_MAX_PATH_LEN];
+  PetscBool given = PETSC_FALSE;
+  PetscFunctionBeginUser;
+  appOptionNames().push_back(name);
+  PetscCall(PetscOptionsString(name, help, "README.md", value->c_str(), buf, sizeof buf, &given));
+  if (given) *value = buf;
+  if (set) *set = given;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode optionBool(PetscOptionItems *PetscOptionsObject, const char *name, const char *help, bool *value)
+{
+  PetscBool flag = *value ? PETSC_TRUE : PETSC_FALSE;
+  PetscFunctionBeginUser;
+  appOptionNames().push_back(name);
+  PetscCall(PetscOptionsBool(name, help, "README.md", flag, &flag, nullptr));
+  *value = flag;
+  PetscFunctionReturn(0);
+}
+
+template <class T>
+PetscErrorCode optionNumber(PetscOptionItems *PetscOptionsObject, const char *name, const char *help, T *value,
+                            PetscBool *set = nullptr)
+{
+  PetscFunctionBeginUser;
+  appOptionNames().push_back(name);
+  if constexpr (std::is_same_v<T, PetscInt>) PetscCall(PetscOptionsInt(name, help, "README.md", *value, value, set));
+  else PetscCall(PetscOptionsReal(name, help, "README.md", *value, value, set));
+  PetscFunctionReturn(0);
+}
+
+// Files and the course of the run.
+PetscErrorCode readRunOptions(PetscOptionItems *PetscOptionsObject, AppOptions *o)
+{
+  PetscBool set;
+  PetscFunctionBeginUser;
+  PetscCall(optionString(PetscOptionsObject, "-scene", "Scene file (or the first argument)", &o->scenePath));
+  std::string stem = o->scenePath.substr(o->scenePath.find_last_of('/') + 1);
+  if (stem.find_last_of('.') != std::string::npos) stem = stem.substr(0, stem.find_last_of('.'));
+  o->outputPath = stem + ".h5";
+  PetscCall(optionString(PetscOptionsObject, "-o", "Results file (HDF5)", &o->outputPath));
+  PetscCall(optionBool(PetscOptionsObject, "-boom_overwrite", "Replace an existing results file", &o->overwrite));
+  PetscCall(optionBool(PetscOptionsObject, "-boom_quiet", "No progress lines and status messages", &o->quiet));
+  PetscCall(optionNumber(PetscOptionsObject, "-boom_progress_interval", "Wall-clock seconds between progress lines",
+                         &o->progressInterval));
+  PetscCall(optionNumber(PetscOptionsObject, "-boom_energy_tolerance",
+                         "Stop a dynamic run whose energy grows beyond the work of loads and drives by this fraction "
+                         "of the energy involved (0: no check)", &o->energyTolerance));
+  PetscCall(optionNumber(PetscOptionsObject, "-boom_adaptive_tol",
+                         "Adaptive steps: largest local position error per step [m] (0: fixed steps)",
+                         &o->adaptiveTolerance));
+  PetscCall(optionNumber(PetscOptionsObject, "-boom_checkpoint_interval",
+                         "Simulated time between checkpoints (0: only when interrupted)", &o->checkpointInterval));
+  o->checkpointPath = withoutExtension(o->outputPath, ".h5") + ".chk.h5";
+  PetscCall(optionString(PetscOptionsObject, "-boom_checkpoint", "Checkpoint file", &o->checkpointPath));
+  PetscCall(optionString(PetscOptionsObject, "-boom_restart", "Continue a dynamic run from this checkpoint",
+                         &o->restartPath));
+  PetscCall(optionNumber(PetscOptionsObject, "-boom_partition_report",
+                         "No run: compare the contiguous split with a METIS partition into this many parts",
+                         &o->partitionParts, &set));
+  o->partitionReport = set;
+  std::string partition = "contiguous";
+  PetscCall(optionString(PetscOptionsObject, "-boom_partition",
+                         "Which rank evaluates which work item: contiguous or metis", &partition));
+  PetscCall(optionNumber(PetscOptionsObject, "-boom_error_wait",
+                         "Seconds a rank that failed alone waits for the others before it aborts the job",
+                         &o->errorWait));
+  PetscFunctionReturn(0);
+}
+
+// Sizes of the run that override the scene's values.
+struct Overrides {
+  PetscBool dt = PETSC_FALSE, rhoInf = PETSC_FALSE, stateInterval = PETSC_FALSE, tracking = PETSC_FALSE;
+  PetscBool modalCount = PETSC_FALSE, loadSteps = PETSC_FALSE, tEnd = PETSC_FALSE;
+};
+
+PetscErrorCode readSceneOverrides(PetscOptionItems *PetscOptionsObject, Scene *scene, Overrides *set)
+{
+  PetscInt elements = 0;
+  PetscBool all = PETSC_FALSE;
+  PetscFunctionBeginUser;
+  PetscCall(optionNumber(PetscOptionsObject, "-boom_elements", "Elements of every ANCF beam (0: the scene's)",
+                         &elements, &all));
+  for (BodySpec &b : scene->bodies) {
+    if (b.type != BodySpec::Type::AncfBeam) continue;
+    PetscInt n = all ? elements : b.elements;
+    const std::string name = "-boom_elements_" + b.name, help = "Elements of the beam '" + b.name + "'";
+    PetscCall(PetscOptionsInt(name.c_str(), help.c_str(), "README.md", n, &n, nullptr));
+    b.elements = static_cast<int>(n);
+  }
+  DynamicSpec &d = scene->dynamic;
+  double dt = d.dt;
+  PetscCall(optionNumber(PetscOptionsObject, "-ts_dt", "Time step (largest step with -boom_adaptive_tol)", &dt, &set->dt));
+  if (set->dt) d.dt = dt, d.dt_min = std::min(d.dt_min, dt);
+  PetscCall(optionNumber(PetscOptionsObject, "-ts_max_time", "End time of a dynamic run", &d.t_end, &set->tEnd));
+  PetscCall(optionNumber(PetscOptionsObject, "-boom_rho_inf", "Spectral radius at infinity of generalized-alpha",
+                         &d.rho_inf, &set->rhoInf));
+  PetscCall(optionNumber(PetscOptionsObject, "-boom_state_interval", "Simulated time between state snapshots",
+                         &scene->output.state_interval, &set->stateInterval));
+  PetscCall(optionNumber(PetscOptionsObject, "-boom_tracking_interval", "Frequency tracking interval (0: off)",
+                         &scene->tracking.interval, &set->tracking));
+  PetscInt count = scene->modal.count, steps = scene->statics.load_steps;
+  PetscCall(optionNumber(PetscOptionsObject, "-boom_modal_count", "Modes of the eigen-analysis", &count,
+                         &set->modalCount));
+  PetscCall(optionNumber(PetscOptionsObject, "-boom_load_steps", "Load increments of a static analysis", &steps,
+                         &set->loadSteps));
+  scene->modal.count = static_cast<int>(count);
+  scene->statics.load_steps = static_cast<int>(steps);
+  PetscFunctionReturn(0);
+}
+
+// Overridden values are checked like the scene's own.
+PetscErrorCode checkOverrides(const Scene &scene, const Overrides &set)
+{
+  const MPI_Comm comm = PETSC_COMM_WORLD;
+  PetscFunctionBeginUser;
+  double elements = 0;
+  for (const BodySpec &b : scene.bodies) {
+    elements += b.type == BodySpec::Type::AncfBeam ? b.elements : 1;
+    PetscCheck(b.type != BodySpec::Type::AncfBeam || (b.elements >= 1 && b.elements <= 10000000), comm,
+               PETSC_ERR_USER_INPUT, "-boom_elements: body '%s' needs between 1 and 1e7 elements (got %d)",
+               b.name.c_str(), b.elements);
+  }
+  // About 4 kB per element (Jacobian pattern and values, factorization,
+  // state vectors): refuse meshes that cannot fit before allocating them.
+  const double available = double(sysconf(_SC_PHYS_PAGES)) * double(sysconf(_SC_PAGE_SIZE));
+  PetscCheck(elements * 4096.0 < available, comm, PETSC_ERR_USER_INPUT,
+             "mesh too large for this machine's memory: %.0f elements need about %.0f GB, the machine has %.0f GB",
+             elements, elements * 4096.0 / 1e9, available / 1e9);
+  const DynamicSpec &d = scene.dynamic;
+  PetscCheck(!set.dt || d.dt > 0, comm, PETSC_ERR_USER_INPUT, "-ts_dt must be > 0 (got %g)", d.dt);
+  PetscCheck(!set.tEnd || d.t_end > 0, comm, PETSC_ERR_USER_INPUT, "-ts_max_time must be > 0 (got %g)", d.t_end);
+  PetscCheck(!set.rhoInf || (d.rho_inf >= 0 && d.rho_inf <= 1), comm, PETSC_ERR_USER_INPUT,
+             "-boom_rho_inf must lie in [0, 1] (got %g)", d.rho_inf);
+  PetscCheck(!set.stateInterval || scene.output.state_interval >= 0, comm, PETSC_ERR_USER_INPUT,
+             "-boom_state_interval must be >= 0 (got %g)", scene.output.state_interval);
+  PetscCheck(!set.tracking || scene.tracking.interval >= 0, comm, PETSC_ERR_USER_INPUT,
+             "-boom_tracking_interval must be >= 0 (0 turns tracking off; got %g)", scene.tracking.interval);
+  PetscCheck(!set.tracking || scene.tracking.interval == 0 || scene.analysis == Scene::Analysis::Dynamic, comm,
+             PETSC_ERR_USER_INPUT, "-boom_tracking_interval needs a dynamic scene");
+  PetscCheck(!set.modalCount || (scene.modal.count >= 0 && scene.modal.count <= 1000), comm, PETSC_ERR_USER_INPUT,
+             "-boom_modal_count must lie in [0, 1000]");
+  PetscCheck(!set.loadSteps || scene.statics.load_steps >= 1, comm, PETSC_ERR_USER_INPUT,
+             "-boom_load_steps must be >= 1");
+  PetscFunctionReturn(0);
+}
+
+// Edits (insertions, deletions, substitutions) between two names.
+std::size_t editDistance(const std::string &a, const std::string &b)
+{
+  std::vector<std::size_t> row(b.size() + 1);
+  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
+  for (std::size_t i = 1; i <= a.size(); ++i) {
+    std::size_t diagonal = row[0];
+    row[0] = i;
+    for (std::size_t j = 1; j <= b.size(); ++j) {
+      const std::size_t up = row[j];
+      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] != b[j - 1])});
+      diagonal = up;
+    }
+  }
+  return row[b.size()];
+}
+
 } // namespace
 
-PetscErrorCode readAppOptions(int argc, char **argv, AppOptions *opts)
+PetscErrorCode sceneArgument(int argc, char **argv, std::string *path)
 {
   char buf[PETSC_MAX_PATH_LEN];
   PetscBool set;
   PetscFunctionBeginUser;
-  if (argc > 1 && argv[1][0] != '-') opts->scenePath = argv[1];
+  if (argc > 1 && argv[1][0] != '-') *path = argv[1];
   PetscCall(PetscOptionsGetString(nullptr, nullptr, "-scene", buf, sizeof buf, &set));
-  if (set) opts->scenePath = buf;
-  require(!opts->scenePath.empty(),
-          "usage: boomdyn SCENE.yaml [-o OUT.h5] [-boom_overwrite] [-boom_quiet] [PETSc options]; see README.md");
-  PetscCall(PetscOptionsGetString(nullptr, nullptr, "-o", buf, sizeof buf, &set));
-  if (set) opts->outputPath = buf;
-  else {
-    std::string stem = opts->scenePath;
-    const auto slash = stem.find_last_of('/');
-    if (slash != std::string::npos) stem = stem.substr(slash + 1);
-    const auto dot = stem.find_last_of('.');
-    if (dot != std::string::npos) stem = stem.substr(0, dot);
-    opts->outputPath = stem + ".h5";
-  }
-  PetscBool flag = PETSC_FALSE;
-  PetscCall(PetscOptionsGetBool(nullptr, "boom_", "-overwrite", &flag, nullptr));
-  opts->overwrite = flag;
-  flag = PETSC_FALSE;
-  PetscCall(PetscOptionsGetBool(nullptr, "boom_", "-quiet", &flag, nullptr));
-  opts->quiet = flag;
-  PetscCall(PetscOptionsGetReal(nullptr, "boom_", "-progress_interval", &opts->progressInterval, nullptr));
-  PetscCall(PetscOptionsGetReal(nullptr, "boom_", "-energy_tolerance", &opts->energyTolerance, nullptr));
-  require(opts->energyTolerance >= 0, "-boom_energy_tolerance must be >= 0");
-  PetscCall(PetscOptionsGetReal(nullptr, "boom_", "-adaptive_tol", &opts->adaptiveTolerance, nullptr));
-  require(opts->adaptiveTolerance >= 0, "-boom_adaptive_tol must be >= 0");
-  PetscCall(PetscOptionsGetReal(nullptr, "boom_", "-checkpoint_interval", &opts->checkpointInterval, nullptr));
-  require(opts->checkpointInterval >= 0, "-boom_checkpoint_interval must be >= 0");
-  PetscCall(PetscOptionsGetString(nullptr, "boom_", "-checkpoint", buf, sizeof buf, &set));
-  if (set) opts->checkpointPath = buf;
-  else {
-    const std::string out = opts->outputPath;
-    const auto dot = out.rfind(".h5");
-    opts->checkpointPath = (dot != std::string::npos && dot + 3 == out.size() ? out.substr(0, dot) : out) + ".chk.h5";
-  }
-  PetscCall(PetscOptionsGetString(nullptr, "boom_", "-restart", buf, sizeof buf, &set));
-  if (set) opts->restartPath = buf;
+  if (set) *path = buf;
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode applySceneOverrides(Scene *scene)
+PetscErrorCode readAppOptions(Scene *scene, AppOptions *opts)
 {
-  PetscInt n;
-  PetscReal r;
-  PetscBool set;
+  Scene noScene; // -help without a scene: the overriding options with their built-in defaults
+  Overrides set;
+  PetscBool help;
   PetscFunctionBeginUser;
-  // -boom_elements N: every ANCF body; -boom_elements_<body> N: one body.
-  PetscCall(PetscOptionsGetInt(nullptr, "boom_", "-elements", &n, &set));
-  for (BodySpec &b : scene->bodies) {
-    if (b.type != BodySpec::Type::AncfBeam) continue;
-    if (set) b.elements = static_cast<int>(n);
-    PetscBool one;
-    PetscInt m;
-    PetscCall(PetscOptionsGetInt(nullptr, "boom_", ("-elements_" + b.name).c_str(), &m, &one));
-    if (one) b.elements = static_cast<int>(m);
-    require(b.elements >= 1 && b.elements <= 10000000,
-            "-boom_elements: body '" + b.name + "' needs between 1 and 1e7 elements (got " + std::to_string(b.elements) + ")");
-  }
-  // Every -boom_elements_<name> must name an ANCF body of this scene.
+  appOptionNames().clear();
+  PetscOptionsBegin(PETSC_COMM_WORLD, nullptr, "boomdyn: run options (README.md)", "boomdyn");
+  PetscCall(readRunOptions(PetscOptionsObject, opts));
+  PetscCall(readSceneOverrides(PetscOptionsObject, scene ? scene : &noScene, &set));
+  PetscOptionsEnd();
+  PetscCall(PetscOptionsHasHelp(nullptr, &help));
+  opts->help = help;
+  PetscCheck(opts->energyTolerance >= 0, PETSC_COMM_WORLD, PETSC_ERR_USER_INPUT, "-boom_energy_tolerance must be >= 0");
+  PetscCheck(opts->adaptiveTolerance >= 0, PETSC_COMM_WORLD, PETSC_ERR_USER_INPUT, "-boom_adaptive_tol must be >= 0");
+  PetscCheck(opts->checkpointInterval >= 0, PETSC_COMM_WORLD, PETSC_ERR_USER_INPUT,
+             "-boom_checkpoint_interval must be >= 0");
+  if (scene) PetscCall(checkOverrides(*scene, set));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode rejectUnknownOptions(const Scene *scene)
+{
   char *all;
+  PetscFunctionBeginUser;
   PetscCall(PetscOptionsGetAll(nullptr, &all));
-  const std::string options = all;
+  std::istringstream words(all);
   PetscCall(PetscFree(all));
-  for (std::size_t pos = options.find("-boom_elements_"); pos != std::string::npos;
-       pos = options.find("-boom_elements_", pos + 1)) {
-    const std::size_t end = options.find_first_of(" \t", pos);
-    const std::string name = options.substr(pos + 15, end == std::string::npos ? std::string::npos : end - pos - 15);
-    bool found = false;
-    for (const BodySpec &b : scene->bodies) found = found || (b.name == name && b.type == BodySpec::Type::AncfBeam);
-    require(found, "-boom_elements_" + name + ": the scene has no ANCF beam named '" + name + "'");
-  }
-  // About 4 kB per element (Jacobian pattern and values, factorization,
-  // state vectors): refuse meshes that cannot fit before allocating them.
-  double elements = 0;
-  for (const BodySpec &b : scene->bodies) elements += b.type == BodySpec::Type::AncfBeam ? b.elements : 1;
-  const double available = double(sysconf(_SC_PHYS_PAGES)) * double(sysconf(_SC_PAGE_SIZE));
-  require(elements * 4096.0 < available,
-          "mesh too large for this machine's memory: " + std::to_string(static_cast<long long>(elements)) +
-            " elements need about " + std::to_string(static_cast<long long>(elements * 4096.0 / 1e9)) +
-            " GB, the machine has " + std::to_string(static_cast<long long>(available / 1e9)) + " GB");
-  DynamicSpec &d = scene->dynamic;
-  PetscCall(PetscOptionsGetReal(nullptr, nullptr, "-ts_dt", &r, &set));
-  if (set) {
-    require(r > 0, "-ts_dt must be > 0 (got " + std::to_string(r) + ")");
-    d.dt = r;
-    d.dt_min = std::min(d.dt_min, r);
-  }
-  PetscCall(PetscOptionsGetReal(nullptr, nullptr, "-ts_max_time", &r, &set));
-  if (set) {
-    require(r > 0, "-ts_max_time must be > 0 (got " + std::to_string(r) + ")");
-    d.t_end = r;
-  }
-  PetscCall(PetscOptionsGetReal(nullptr, "boom_", "-rho_inf", &r, &set));
-  if (set) {
-    require(r >= 0 && r <= 1, "-boom_rho_inf must lie in [0, 1] (got " + std::to_string(r) + ")");
-    d.rho_inf = r;
-  }
-  PetscCall(PetscOptionsGetReal(nullptr, "boom_", "-state_interval", &r, &set));
-  if (set) {
-    require(r >= 0, "-boom_state_interval must be >= 0 (got " + std::to_string(r) + ")");
-    scene->output.state_interval = r;
-  }
-  PetscCall(PetscOptionsGetReal(nullptr, "boom_", "-tracking_interval", &r, &set));
-  if (set) {
-    require(r >= 0, "-boom_tracking_interval must be >= 0 (0 turns tracking off; got " + std::to_string(r) + ")");
-    require(r == 0 || scene->analysis == Scene::Analysis::Dynamic, "-boom_tracking_interval needs a dynamic scene");
-    scene->tracking.interval = r;
-  }
-  PetscCall(PetscOptionsGetInt(nullptr, "boom_", "-modal_count", &n, &set));
-  if (set) {
-    require(n >= 0 && n <= 1000, "-boom_modal_count must lie in [0, 1000]");
-    scene->modal.count = static_cast<int>(n);
-  }
-  PetscCall(PetscOptionsGetInt(nullptr, "boom_", "-load_steps", &n, &set));
-  if (set) {
-    require(n >= 1, "-boom_load_steps must be >= 1");
-    scene->statics.load_steps = static_cast<int>(n);
+  std::vector<std::string> known = appOptionNames();
+  known.insert(known.end(), std::begin(libraryOptions), std::end(libraryOptions));
+  const std::string perBody = "-boom_elements_";
+  std::string word;
+  while (words >> word) {
+    if (word.rfind("-boom_", 0) != 0 || std::find(known.begin(), known.end(), word) != known.end()) continue;
+    if (word.rfind(perBody, 0) == 0 && word.size() > perBody.size()) {
+      // Every -boom_elements_<name> must name an ANCF body of this scene.
+      const std::string name = word.substr(perBody.size());
+      bool found = !scene;
+      for (const BodySpec &b : scene ? scene->bodies : std::vector<BodySpec>{})
+        found = found || (b.name == name && b.type == BodySpec::Type::AncfBeam);
+      PetscCheck(found, PETSC_COMM_WORLD, PETSC_ERR_USER_INPUT, "%s: the scene has no ANCF beam named '%s'",
+                 word.c_str(), name.c_str());
+      continue;
+    }
+    const auto closest = std::min_element(known.begin(), known.end(), [&](const std::string &a, const std::string &b) {
+      return editDistance(word, a) < editDistance(word, b);
+    });
+    SETERRQ(PETSC_COMM_WORLD, PETSC_ERR_USER_INPUT, "unknown option %s; did you mean %s? (boomdyn -help lists them all)",
+            word.c_str(), closest->c_str());
   }
   PetscFunctionReturn(0);
 }

@@ -1,6 +1,9 @@
 // Run-time options of the boomdyn program. The program's own options carry
-// the prefix -boom_ (plus -o for the output file); PETSc's own (-ts_dt,
-// -ts_max_time, -snes_*, -ksp_*, -log_view, ...) keep their usual meaning.
+// the prefix -boom_ (plus -o and -scene); PETSc's own (-ts_dt, -ts_max_time,
+// -snes_*, -ksp_*, -log_view, ...) keep their usual meaning. Every option is
+// read inside one PetscOptionsBegin/End block, so -help lists each with its
+// default (the scene's value where the scene sets it), and a misspelt -boom_
+// option is an error naming the closest valid one.
 #pragma once
 
 #include "boomdyn/scene.hpp"
@@ -22,13 +25,22 @@ struct AppOptions {
   double checkpointInterval = 0; // -boom_checkpoint_interval (s of simulated time; 0: only when interrupted)
   std::string checkpointPath;    // -boom_checkpoint (default: output stem + ".chk.h5")
   std::string restartPath;       // -boom_restart: continue a dynamic run from this checkpoint
+  bool partitionReport = false;  // -boom_partition_report P: no run, a partition report into P parts
+  PetscInt partitionParts = 0;
+  double errorWait = 30;         // -boom_error_wait (s)
+  bool help = false;             // -help: options listed, no run without a scene
 };
 
-// Scene path from argv[1] (or -scene PATH); the rest from the options database.
-PetscErrorCode readAppOptions(int argc, char **argv, AppOptions *opts);
-// Apply command-line overrides to the scene (mesh sizes, step, end time,
-// rho_inf, output interval, modal count) so that convergence studies need no
-// edited files. Invalid values are rejected like bad scene values.
-PetscErrorCode applySceneOverrides(Scene *scene);
+// The scene path: argv[1] unless it is an option, or -scene PATH.
+PetscErrorCode sceneArgument(int argc, char **argv, std::string *path);
+// Every option, with its help text. scene (may be null with -help): the
+// scene whose values are the defaults of the overriding options (mesh
+// sizes, step, end time, rho_inf, intervals, modal count, load steps),
+// changed in place so that convergence studies need no edited files.
+// Invalid values are user errors (PETSC_ERR_USER_INPUT) naming the option.
+PetscErrorCode readAppOptions(Scene *scene, AppOptions *opts);
+// Collective: an error naming every -boom_ option of the database that
+// boomdyn does not know, and the closest one it knows.
+PetscErrorCode rejectUnknownOptions(const Scene *scene);
 
 } // namespace boomdyn

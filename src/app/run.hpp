@@ -1,27 +1,21 @@
-// One run of a scene: static, dynamic or modal analysis, with results written
-// as described in docs/output.md.
+// One run of a scene by the program: a Simulation with the program's
+// monitors (results file, friction, tracking, checkpoints, progress).
 #pragma once
 
 #include "options.hpp"
 
+#include "boomdyn/monitor.hpp"
 #include "boomdyn/scene.hpp"
 
 #include <petscsys.h>
 
-#include <stdexcept>
-
 namespace boomdyn {
-
-// A run stopped by SIGINT/SIGTERM (after writing a checkpoint).
-class Interrupted : public std::runtime_error {
-public:
-  using std::runtime_error::runtime_error;
-};
 
 // -boom_partition_report P: the contiguous split against a METIS partition
 // of the work-item graph into P parts (interface unknowns, balance); no run.
 PetscErrorCode reportPartitions(const Scene &scene, PetscInt parts);
 
-PetscErrorCode runScene(const Scene &scene, const AppOptions &opts, int argc, char **argv);
+// Collective. A run that fails or is interrupted returns 0; outcome says how it ended.
+PetscErrorCode runScene(const Scene &scene, const AppOptions &opts, int argc, char **argv, RunOutcome *outcome);
 
 } // namespace boomdyn

@@ -99,10 +99,8 @@ PetscErrorCode CheckpointWriter::write(const std::string &path, const std::strin
     }
   }
   PetscCallMPI(MPI_Bcast(&ok, 1, MPI_INT, 0, comm_));
-  if (!ok) {
-    PetscCallMPI(MPI_Bcast(message, sizeof message, MPI_CHAR, 0, comm_));
-    throw std::runtime_error(std::string("checkpoint ") + path + ": " + message);
-  }
+  if (!ok) PetscCallMPI(MPI_Bcast(message, sizeof message, MPI_CHAR, 0, comm_));
+  PetscCheck(ok, comm_, PETSC_ERR_FILE_WRITE, "checkpoint %s: %s", path.c_str(), message);
   PetscFunctionReturn(0);
 }
 
@@ -139,10 +137,8 @@ PetscErrorCode CheckpointReader::read(const std::string &path)
     if (file >= 0) H5Fclose(file);
   }
   PetscCallMPI(MPI_Bcast(&ok, 1, MPI_INT, 0, comm_));
-  if (!ok) {
-    PetscCallMPI(MPI_Bcast(message, sizeof message, MPI_CHAR, 0, comm_));
-    throw std::runtime_error("restart file " + path + ": " + message + " (not a boomdyn checkpoint?)");
-  }
+  if (!ok) PetscCallMPI(MPI_Bcast(message, sizeof message, MPI_CHAR, 0, comm_));
+  PetscCheck(ok, comm_, PETSC_ERR_USER_INPUT, "restart file %s: %s (not a boomdyn checkpoint?)", path.c_str(), message);
   // Broadcast names, scalars, arrays and the scene text.
   auto bcastString = [&](std::string &s) -> PetscErrorCode {
     int n = static_cast<int>(s.size());
@@ -189,14 +185,14 @@ PetscErrorCode CheckpointReader::getVector(const std::string &name, Vec v) const
   Vec all;
   PetscInt n;
   PetscFunctionBeginUser;
-  if (!hasVector(name)) throw std::runtime_error("restart file " + path_ + ": no vector '" + name + "'");
+  PetscCheck(hasVector(name), comm_, PETSC_ERR_USER_INPUT, "restart file %s: no vector '%s'", path_.c_str(), name.c_str());
   PetscCallMPI(MPI_Comm_rank(comm_, &rank));
   PetscCall(VecGetSize(v, &n));
   int sizeOk = rank != 0 || static_cast<PetscInt>(vectors_.at(name).size()) == n;
   PetscCallMPI(MPI_Bcast(&sizeOk, 1, MPI_INT, 0, comm_));
-  if (!sizeOk)
-    throw std::runtime_error("restart file " + path_ + ": vector '" + name +
-                             "' has another size than this scene's (was the mesh or scene changed?)");
+  PetscCheck(sizeOk, comm_, PETSC_ERR_USER_INPUT,
+             "restart file %s: vector '%s' has another size than this scene's (was the mesh or scene changed?)",
+             path_.c_str(), name.c_str());
   PetscCall(VecScatterCreateToZero(v, &sc, &all));
   if (rank == 0) {
     PetscScalar *a;

@@ -48,8 +48,6 @@ ResultsWriter::~ResultsWriter()
     } catch (...) {
     }
   }
-  if (toZero_) (void)VecScatterDestroy(&toZero_);
-  if (gathered_) (void)VecDestroy(&gathered_);
 }
 
 PetscErrorCode ResultsWriter::open(const std::string &path, bool overwrite, const RunInfo &info, Vec layout)
@@ -57,7 +55,7 @@ PetscErrorCode ResultsWriter::open(const std::string &path, bool overwrite, cons
   PetscFunctionBeginUser;
   PetscCallMPI(MPI_Comm_rank(comm_, &rank_));
   path_ = path;
-  PetscCall(VecScatterCreateToZero(layout, &toZero_, &gathered_));
+  PetscCall(VecScatterCreateToZero(layout, toZero_.address(), gathered_.address()));
   // Rank 0 creates the file; every rank learns whether that worked, so all stop together.
   int ok = 1;
   std::string error;

@@ -1,0 +1,140 @@
+// The monitors of a boomdyn run (monitor.hpp). The program attaches all that
+// apply; tests attach their own (tests/support.hpp).
+//   EnergyCheck        energy balance of a dynamic run; fails a run that creates energy
+//   ResultsOutput      the results file: /steps (with sensors), /joints, /state, /modes, /summary
+//   FrictionOutput     stick/slip of frictional joints: /friction and /events
+//   FrequencyTracking  modes along the trajectory: /tracking
+//   Checkpointer       checkpoints every interval of simulated time and on interruption
+//   ProgressLine       progress lines on the console
+#pragma once
+
+#include "boomdyn/energy_balance.hpp"
+#include "boomdyn/frequency_tracker.hpp"
+#include "boomdyn/monitor.hpp"
+#include "boomdyn/results_writer.hpp"
+#include "boomdyn/rope_tensions.hpp"
+#include "boomdyn/stick_slip.hpp"
+
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace boomdyn {
+
+class Simulation;
+
+class EnergyCheck : public Monitor {
+public:
+  explicit EnergyCheck(double tolerance) : balance_(tolerance) {}
+  PetscErrorCode start(const RunState &s, bool) override;
+  PetscErrorCode afterStep(const RunState &s, std::string *failure) override;
+  const EnergyBalance &balance() const { return balance_; }
+
+private:
+  EnergyBalance balance_; // restarted runs check the balance from the restart on: not checkpointed
+};
+
+class ResultsOutput : public Monitor {
+public:
+  // stateInterval: simulated time between state snapshots (0: the end only).
+  ResultsOutput(Simulation &sim, const std::string &path, bool overwrite, const RunInfo &info, double stateInterval);
+  PetscErrorCode setUp() override;
+  PetscErrorCode start(const RunState &s, bool restarted) override;
+  PetscErrorCode afterStep(const RunState &s, std::string *failure) override;
+  PetscErrorCode modes(double t, const ModalResult &modes) override;
+  PetscErrorCode finish(const RunState &s, const RunOutcome &outcome) override;
+  PetscErrorCode save(CheckpointWriter &out) const override;
+  PetscErrorCode restore(const CheckpointReader &in) override;
+  // For the monitors that write groups of their own into the same file.
+  ResultsWriter &writer() { return writer_; }
+
+private:
+  PetscErrorCode writeStepRow(const RunState &s);
+  PetscErrorCode writeJoints(const RunState &s);
+
+  Simulation &sim_;
+  ResultsWriter writer_;
+  std::string path_;
+  bool overwrite_;
+  RunInfo info_;
+  double stateInterval_, nextState_;
+  RopeTensions ropes_;
+  std::vector<SensorReading> readings_;
+  std::vector<double> slacks_, multipliers_, deflections_;
+};
+
+class FrictionOutput : public Monitor {
+public:
+  FrictionOutput(Simulation &sim, ResultsWriter &writer, bool quiet);
+  PetscErrorCode start(const RunState &s, bool restarted) override;
+  PetscErrorCode afterStep(const RunState &s, std::string *failure) override;
+  PetscErrorCode finish(const RunState &s, const RunOutcome &outcome) override;
+  PetscErrorCode save(CheckpointWriter &out) const override;
+  PetscErrorCode restore(const CheckpointReader &in) override;
+
+private:
+  PetscErrorCode record(const RunState &s);
+
+  Simulation &sim_;
+  ResultsWriter &writer_;
+  bool quiet_;
+  StickSlipMonitor stickSlip_;
+  std::vector<double> values_;
+  std::vector<FrictionReading> readings_;
+};
+
+class FrequencyTracking : public Monitor {
+public:
+  FrequencyTracking(Simulation &sim, ResultsWriter &writer);
+  PetscErrorCode setUp() override; // SLEPc is initialized only by runs that track
+  PetscErrorCode start(const RunState &s, bool restarted) override;
+  PetscErrorCode afterStep(const RunState &s, std::string *failure) override;
+  PetscErrorCode save(CheckpointWriter &out) const override;
+  PetscErrorCode restore(const CheckpointReader &in) override;
+
+private:
+  PetscErrorCode track(const RunState &s, double h);
+
+  Simulation &sim_;
+  ResultsWriter &writer_;
+  std::unique_ptr<FrequencyTracker> tracker_;
+  double interval_, next_ = 0;
+  std::vector<double> shapeTimes_;
+};
+
+class Checkpointer : public Monitor {
+public:
+  // interval: simulated time between checkpoints (0: only when interrupted).
+  Checkpointer(const Simulation &sim, const std::string &path, double interval, bool quiet)
+    : sim_(sim), path_(path), interval_(interval), next_(interval), quiet_(quiet)
+  {
+  }
+  PetscErrorCode afterStep(const RunState &s, std::string *failure) override;
+  PetscErrorCode finish(const RunState &s, const RunOutcome &outcome) override;
+  PetscErrorCode save(CheckpointWriter &out) const override;
+  PetscErrorCode restore(const CheckpointReader &in) override;
+
+private:
+  PetscErrorCode write(double t);
+
+  const Simulation &sim_;
+  std::string path_;
+  double interval_, next_;
+  bool quiet_;
+};
+
+// A progress line for long runs: step, simulated time, rate and ETA, at most
+// every `interval` seconds of wall time, on rank 0; static runs: one line per
+// load increment.
+class ProgressLine : public Monitor {
+public:
+  ProgressLine(double tEnd, double interval) : tEnd_(tEnd), interval_(interval) {}
+  PetscErrorCode start(const RunState &s, bool restarted) override;
+  PetscErrorCode afterStep(const RunState &s, std::string *failure) override;
+
+private:
+  double tEnd_, interval_;
+  PetscLogDouble start_ = 0, last_ = 0;
+};
+
+} // namespace boomdyn

@@ -1,0 +1,131 @@
+// The dynamic analysis of a Simulation: generalized-alpha from the initial
+// state (or a checkpoint) to t_end through integrate() (time_stepper.hpp),
+// with every monitor called at the start, after every accepted step and at
+// the end.
+#include "boomdyn/simulation.hpp"
+
+#include "boomdyn/slider_tracker.hpp"
+
+namespace boomdyn {
+
+PetscErrorCode Simulation::dynamicState(RunState *state)
+{
+  PetscReal violation;
+  PetscFunctionBeginUser;
+  state->dynamic = true;
+  state->t = integrator_->time();
+  state->q = integrator_->positions();
+  state->v = integrator_->velocities();
+  state->lambda = integrator_->multipliers();
+  PetscCall(integrator_->diagnostics(&state->energy, &violation));
+  state->violation = violation;
+  state->stepper = &stepper_;
+  PetscFunctionReturn(0);
+}
+
+// Everything a checkpoint holds, in the order it was saved. Throws
+// std::runtime_error naming the file when a value is missing.
+PetscErrorCode Simulation::restore(RunState *state)
+{
+  PetscFunctionBeginUser;
+  CheckpointReader in(comm_);
+  PetscCall(in.read(options_.restartPath));
+  PetscCheck(in.sceneText() == scene_.text, comm_, PETSC_ERR_USER_INPUT,
+             "restart file %s was written for another scene text than %s", options_.restartPath.c_str(),
+             scene_.file.c_str());
+  PetscCall(integrator_->restore(in));
+  PetscCall(restoreStepper(in, &stepper_));
+  PetscCall(dynamicState(state));
+  outcome_.maxViolation = in.scalar("max_violation");
+  for (auto &m : monitors_) PetscCall(m->restore(in));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode Simulation::runDynamic(const std::function<bool()> &stop)
+{
+  RunState state;
+  PetscFunctionBeginUser;
+  const bool restarted = !options_.restartPath.empty();
+  if (restarted) {
+    // The checkpoint reader reports a missing or foreign file by exception.
+    PetscErrorCode ierr = 0;
+    PetscCallCXX(ierr = restore(&state));
+    PetscCall(ierr);
+    if (!options_.quiet)
+      PetscCall(PetscPrintf(comm_, "restarted from %s at t = %g s (step %" PetscInt_FMT ")\n",
+                            options_.restartPath.c_str(), integrator_->time(), stepper_.steps));
+  } else {
+    stepper_ = StepperState{};
+    // A mechanism without consistent accelerations is reported by exception.
+    PetscErrorCode ierr = 0;
+    PetscCallCXX(ierr = integrator_->initialize(0.0, x_, zero_));
+    PetscCall(ierr);
+    PetscCall(dynamicState(&state));
+    outcome_.maxViolation = state.violation;
+  }
+  for (auto &m : monitors_) PetscCall(m->start(state, restarted));
+
+  const double tEnd = scene_.dynamic.t_end;
+  auto onStep = [&](const StepInfo &s) -> PetscErrorCode {
+    PetscFunctionBeginUser;
+    PetscCall(dynamicState(&state));
+    state.t = s.t;
+    state.h = s.h;
+    state.step = s.step;
+    state.iterations = s.iterations;
+    state.rejected = s.rejected;
+    state.last = s.t >= tEnd * (1 - 1e-12);
+    PetscCall(afterStep(state, &s.failure));
+    PetscFunctionReturn(0);
+  };
+  PetscCall(integrate(*integrator_, scene_.dynamic, onStep, &summary_, &stepper_, stop));
+
+  outcome_.steps = summary_.steps;
+  outcome_.rejected = summary_.rejected;
+  outcome_.newtonIterations = summary_.newtonIterations;
+  if (summary_.interrupted) outcome_.status = "interrupted";
+  else if (!summary_.completed) outcome_.status = "failed: " + failureDetails(summary_.failure);
+  // The final state for the monitors' finish(); its diagnostics are those
+  // of the last accepted step, already seen.
+  state.t = integrator_->time();
+  state.h = 0;
+  state.q = integrator_->positions();
+  state.v = integrator_->velocities();
+  state.lambda = integrator_->multipliers();
+  outcome_.endTime = integrator_->time();
+  if (!options_.quiet)
+    PetscCall(PetscPrintf(comm_,
+                          "%s: %" PetscInt_FMT " steps, %" PetscInt_FMT " rejected, %.2f Newton iterations/step, max "
+                          "constraint violation %.2e, %.2f s\n",
+                          outcome_.status.c_str(), outcome_.steps, outcome_.rejected,
+                          outcome_.steps ? (double)summary_.newtonIterations / outcome_.steps : 0.0,
+                          outcome_.maxViolation, [&] {
+                            PetscLogDouble now;
+                            (void)PetscTime(&now);
+                            return now - started_;
+                          }()));
+  if (summary_.completed && options_.modal && scene_.modal.count > 0) {
+    const bool atStart = scene_.modal.at == "start";
+    PetscCall(modalAnalysis(atStart ? 0.0 : integrator_->time(), atStart ? x_.get() : integrator_->positions(),
+                            integrator_->multipliers()));
+  }
+  PetscCall(finish(state));
+  PetscFunctionReturn(0);
+}
+
+// Newton failing with a contact point at a track end: the booms barely
+// overlap (two pads nearly at one point) or a slider is leaving its track.
+std::string Simulation::failureDetails(const std::string &failure)
+{
+  std::string status = failure;
+  std::vector<double> slacks, multipliers;
+  if (sensors_.readJoints(integrator_->positions(), integrator_->multipliers(), slacks, multipliers) == 0) {
+    const std::string ends = contactsNearTrackEnds(model_, slacks);
+    if (failure.rfind("Newton failed", 0) == 0 && !ends.empty())
+      status += "; contact points at their track ends (booms without overlap, or a slider leaving its track): " + ends;
+  }
+  if (!conditioning_.empty()) status += "; likely cause: " + conditioning_.front();
+  return status;
+}
+
+} // namespace boomdyn

@@ -1,0 +1,74 @@
+// Frequency tracking along a dynamic run (/tracking): an eigen-analysis at
+// the first step at or after every tracking interval, and the tracked shape
+// at the first analysis at or after each requested time.
+#include "boomdyn/monitors.hpp"
+#include "boomdyn/simulation.hpp"
+
+#include <slepcsys.h>
+
+#include <algorithm>
+
+namespace boomdyn {
+
+FrequencyTracking::FrequencyTracking(Simulation &sim, ResultsWriter &writer)
+  : sim_(sim), writer_(writer), interval_(sim.scene().tracking.interval), shapeTimes_(sim.scene().tracking.shapesAt)
+{
+}
+
+PetscErrorCode FrequencyTracking::setUp()
+{
+  PetscFunctionBeginUser;
+  PetscCall(SlepcInitialize(nullptr, nullptr, nullptr, nullptr));
+  tracker_ = std::make_unique<FrequencyTracker>(sim_.assembler(), sim_.scene().tracking.count);
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode FrequencyTracking::track(const RunState &s, double h)
+{
+  PetscFunctionBeginUser;
+  if (s.t < next_ - 1e-9 * h) PetscFunctionReturn(0);
+  TrackedModes modes;
+  PetscCall(tracker_->analyze(s.t, s.q, s.lambda, &modes));
+  bool shape = false;
+  while (!shapeTimes_.empty() && *std::min_element(shapeTimes_.begin(), shapeTimes_.end()) <= s.t + 1e-9 * h) {
+    shapeTimes_.erase(std::min_element(shapeTimes_.begin(), shapeTimes_.end()));
+    shape = true;
+  }
+  PetscCall(writer_.appendTracking(modes, shape));
+  while (next_ <= s.t + 1e-9 * h) next_ += interval_;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode FrequencyTracking::start(const RunState &s, bool restarted)
+{
+  PetscFunctionBeginUser;
+  if (s.dynamic && !restarted) PetscCall(track(s, sim_.scene().dynamic.dt));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode FrequencyTracking::afterStep(const RunState &s, std::string *)
+{
+  PetscFunctionBeginUser;
+  if (s.dynamic) PetscCall(track(s, s.h));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode FrequencyTracking::save(CheckpointWriter &out) const
+{
+  PetscFunctionBeginUser;
+  out.addScalar("next_track", next_);
+  out.addArray("shape_times", shapeTimes_);
+  PetscCall(tracker_->save(out));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode FrequencyTracking::restore(const CheckpointReader &in)
+{
+  PetscFunctionBeginUser;
+  next_ = in.scalar("next_track");
+  shapeTimes_ = in.array("shape_times");
+  PetscCall(tracker_->restore(in));
+  PetscFunctionReturn(0);
+}
+
+} // namespace boomdyn

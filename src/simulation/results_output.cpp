@@ -1,0 +1,106 @@
+// The results file of a run (docs/output.md) as a monitor: one /steps row
+// (energies, violation, sensors) and one /joints row per step, state
+// snapshots every state interval and at the end, the modes, the summary.
+#include "boomdyn/monitors.hpp"
+#include "boomdyn/simulation.hpp"
+
+namespace boomdyn {
+
+ResultsOutput::ResultsOutput(Simulation &sim, const std::string &path, bool overwrite, const RunInfo &info,
+                             double stateInterval)
+  : sim_(sim), writer_(sim.model(), sim.comm()), path_(path), overwrite_(overwrite), info_(info),
+    stateInterval_(stateInterval), nextState_(stateInterval), ropes_(sim.model())
+{
+}
+
+PetscErrorCode ResultsOutput::setUp()
+{
+  PetscFunctionBeginUser;
+  // An existing file or an unwritable folder is reported by exception.
+  PetscErrorCode ierr = 0;
+  PetscCallCXX(ierr = writer_.open(path_, overwrite_, info_, sim_.initialState()));
+  PetscCall(ierr);
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ResultsOutput::writeStepRow(const RunState &s)
+{
+  PetscFunctionBeginUser;
+  PetscCall(sim_.sensors().read(s.q, s.v, readings_));
+  PetscCall(writer_.appendStep(s.t, s.h, s.iterations, s.violation, s.energy, readings_));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ResultsOutput::writeJoints(const RunState &s)
+{
+  std::vector<double> tensions;
+  PetscFunctionBeginUser;
+  PetscCall(sim_.sensors().readJoints(s.q, s.lambda, slacks_, multipliers_));
+  PetscCall(sim_.sensors().readFrames(s.q, deflections_));
+  PetscCall(ropes_.update(sim_.comm(), s.t, multipliers_, tensions));
+  PetscCall(writer_.appendJoints(slacks_, multipliers_, tensions, deflections_));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ResultsOutput::start(const RunState &s, bool restarted)
+{
+  PetscFunctionBeginUser;
+  if (!s.dynamic) PetscFunctionReturn(0); // static runs: rows of converged load increments only
+  if (!restarted) { // a restarted file starts with the restored state snapshot only
+    PetscCall(writeStepRow(s));
+    PetscCall(writeJoints(s));
+  }
+  PetscCall(writer_.appendState(s.t, s.q, s.v, s.lambda));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ResultsOutput::afterStep(const RunState &s, std::string *)
+{
+  PetscFunctionBeginUser;
+  PetscCall(writeStepRow(s));
+  if (!s.dynamic) PetscFunctionReturn(0);
+  PetscCall(writeJoints(s));
+  if ((stateInterval_ > 0 && s.t >= nextState_ - 1e-9 * s.h) || s.last) {
+    PetscCall(writer_.appendState(s.t, s.q, s.v, s.lambda));
+    while (stateInterval_ > 0 && nextState_ <= s.t + 1e-9 * s.h) nextState_ += stateInterval_;
+  }
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ResultsOutput::modes(double t, const ModalResult &modes)
+{
+  PetscFunctionBeginUser;
+  PetscCall(writer_.writeModes(t, modes));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ResultsOutput::finish(const RunState &s, const RunOutcome &outcome)
+{
+  PetscFunctionBeginUser;
+  // A completed dynamic run wrote its last state with its last step; a
+  // failed or interrupted one ends with the last accepted state.
+  if (!outcome.dynamic || !outcome.completed()) PetscCall(writer_.appendState(outcome.endTime, s.q, s.v, s.lambda));
+  if (outcome.hasEnergyBalance)
+    writer_.setEnergyBalance(outcome.inputWork, outcome.energyExcess, outcome.energyInvolved);
+  writer_.setSlackRopeSteps(ropes_.slackSteps());
+  PetscCall(writer_.finish(outcome.status, outcome.steps, outcome.rejected, outcome.wallTime, outcome.maxViolation));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ResultsOutput::save(CheckpointWriter &out) const
+{
+  PetscFunctionBeginUser;
+  out.addScalar("next_state", nextState_);
+  out.addScalar("slack_rope_steps", ropes_.slackSteps());
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ResultsOutput::restore(const CheckpointReader &in)
+{
+  PetscFunctionBeginUser;
+  nextState_ = in.scalar("next_state");
+  ropes_.setSlackSteps(static_cast<PetscInt>(in.scalar("slack_rope_steps")));
+  PetscFunctionReturn(0);
+}
+
+} // namespace boomdyn

@@ -1,0 +1,114 @@
+#include "boomdyn/simulation.hpp"
+
+#include "boomdyn/monitors.hpp"
+#include "boomdyn/slider_tracker.hpp"
+
+#include <slepcsys.h>
+
+#include <algorithm>
+
+namespace boomdyn {
+
+Simulation::Simulation(const Scene &scene, MPI_Comm comm, const SimulationOptions &options)
+  : scene_(scene), comm_(comm), options_(options), model_(scene), assembler_(model_), sensors_(model_)
+{
+}
+
+PetscErrorCode Simulation::setUp()
+{
+  PetscFunctionBeginUser;
+  PetscCall(assembler_.setUp(comm_));
+  PetscCall(assembler_.createVector(x_.address()));
+  PetscCall(assembler_.createVector(zero_.address()));
+  PetscCall(assembler_.initialState(x_));
+  PetscCall(sensors_.setUp(x_));
+  // Meshes too fine for the step in double precision (reported even in quiet runs).
+  conditioning_ = model_.conditioningWarnings();
+  if (options_.warnings)
+    for (const std::string &w : conditioning_) PetscCall(PetscPrintf(comm_, "warning: %s\n", w.c_str()));
+  if (scene_.analysis == Scene::Analysis::Dynamic) {
+    integrator_ = std::make_unique<GeneralizedAlpha>(assembler_, scene_.dynamic.rho_inf);
+    PetscCall(integrator_->setUp(scene_.dynamic.max_newton));
+    integrator_->setErrorTolerance(options_.adaptiveTolerance);
+    auto energy = std::make_unique<EnergyCheck>(options_.energyTolerance);
+    energy_ = energy.get();
+    monitors_.push_back(std::move(energy));
+  } else {
+    statics_ = std::make_unique<StaticSolver>(assembler_);
+    PetscCall(statics_->setUp());
+  }
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode Simulation::run(const std::function<bool()> &stop)
+{
+  PetscFunctionBeginUser;
+  PetscCheck(integrator_ || statics_, comm_, PETSC_ERR_ORDER, "Simulation::run() needs setUp() first");
+  PetscCall(PetscTime(&started_));
+  outcome_ = RunOutcome{};
+  outcome_.dynamic = integrator_ != nullptr;
+  for (auto &m : monitors_) PetscCall(m->setUp());
+  if (integrator_) PetscCall(runDynamic(stop));
+  else PetscCall(runStatic());
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode Simulation::afterStep(const RunState &state, std::string *failure)
+{
+  PetscFunctionBeginUser;
+  outcome_.maxViolation = std::max(outcome_.maxViolation, state.violation);
+  for (auto &m : monitors_) {
+    std::string reason;
+    PetscCall(m->afterStep(state, &reason));
+    if (failure->empty()) *failure = reason;
+  }
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode Simulation::finish(const RunState &state)
+{
+  PetscLogDouble now;
+  PetscFunctionBeginUser;
+  PetscCall(PetscTime(&now));
+  outcome_.wallTime = now - started_;
+  if (energy_) {
+    outcome_.hasEnergyBalance = true;
+    outcome_.inputWork = energy_->balance().inputWork();
+    outcome_.energyExcess = energy_->balance().excess();
+    outcome_.energyInvolved = energy_->balance().involved();
+  }
+  for (auto &m : monitors_) PetscCall(m->finish(state, outcome_));
+  PetscFunctionReturn(0);
+}
+
+// SLEPc is initialized only by runs that ask for modes.
+PetscErrorCode Simulation::modalAnalysis(double t, Vec q, Vec lambda)
+{
+  PetscFunctionBeginUser;
+  PetscCall(SlepcInitialize(nullptr, nullptr, nullptr, nullptr));
+  ModalResult modes;
+  PetscCall(solveModes(assembler_, t, q, lambda, scene_.modal.count, &modes));
+  for (auto &m : monitors_) PetscCall(m->modes(t, modes));
+  if (!options_.quiet) {
+    PetscCall(PetscPrintf(comm_, "modes at t = %g s:\n", t));
+    for (std::size_t k = 0; k < modes.frequencyHz.size(); ++k)
+      PetscCall(PetscPrintf(comm_, "  mode %2zu  f = %12.6f Hz  (relative residual %.1e)\n", k + 1,
+                            modes.frequencyHz[k], modes.residuals[k]));
+  }
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode Simulation::writeCheckpoint(const std::string &path) const
+{
+  PetscFunctionBeginUser;
+  PetscCheck(integrator_, comm_, PETSC_ERR_ORDER, "checkpoints are written by dynamic runs only");
+  CheckpointWriter w(comm_);
+  PetscCall(integrator_->save(w));
+  PetscCall(saveStepper(w, stepper_));
+  w.addScalar("max_violation", outcome_.maxViolation);
+  for (const auto &m : monitors_) PetscCall(m->save(w));
+  PetscCall(w.write(path, scene_.text));
+  PetscFunctionReturn(0);
+}
+
+} // namespace boomdyn

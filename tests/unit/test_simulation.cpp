@@ -1,0 +1,121 @@
+// The Simulation object and its monitor interface: a monitor can end a run
+// as failed; a checkpoint written through the Simulation holds every
+// monitor's own state, and a Simulation restarted from it continues both
+// the state (bitwise, one rank) and the monitors.
+#include "support.hpp"
+
+#include <cstdio>
+
+using namespace boomdyn;
+using namespace boomdyn::testing;
+
+namespace {
+
+Scene cantilever()
+{
+  return parseScene(R"(
+name: small-cantilever
+analysis: dynamic
+bodies:
+  - name: boom
+    length: 2
+    elements: 4
+    section: {EA: 1.0e9, EI: 1.0e6, rhoA: 30}
+constraints:
+  - {type: clamp, name: base, body: boom, at: start}
+loads:
+  - {type: point_force, name: tip, body: boom, at: end, force: [0, -1000]}
+dynamic: {t_end: 0.02, dt: 1.0e-3}
+)",
+                    "small-cantilever.yaml");
+}
+
+// Counts the steps it sees; fails the run at step failAt (0: never);
+// writes a checkpoint at step checkpointAt (0: never).
+class CountingMonitor : public Monitor {
+public:
+  CountingMonitor(const Simulation &sim, int failAt, int checkpointAt, std::string path)
+    : sim_(sim), failAt_(failAt), checkpointAt_(checkpointAt), path_(std::move(path))
+  {
+  }
+  PetscErrorCode afterStep(const RunState &s, std::string *failure) override
+  {
+    PetscFunctionBeginUser;
+    ++seen;
+    if (failAt_ && s.step == failAt_) *failure = "stopped by the test at step " + std::to_string(s.step);
+    if (checkpointAt_ && s.step == checkpointAt_) PetscCall(sim_.writeCheckpoint(path_));
+    PetscFunctionReturn(0);
+  }
+  PetscErrorCode save(CheckpointWriter &out) const override
+  {
+    out.addScalar("test.seen", seen);
+    return 0;
+  }
+  PetscErrorCode restore(const CheckpointReader &in) override
+  {
+    seen = static_cast<int>(in.scalar("test.seen"));
+    restored = true;
+    return 0;
+  }
+  int seen = 0;
+  bool restored = false;
+
+private:
+  const Simulation &sim_;
+  int failAt_, checkpointAt_;
+  std::string path_;
+};
+
+std::vector<double> finalPositions(Simulation &sim)
+{
+  return gatherAll(sim.integrator()->positions());
+}
+
+} // namespace
+
+TEST(Simulation, MonitorFailureEndsTheRun)
+{
+  const Scene scene = cantilever();
+  Simulation sim(scene, PETSC_COMM_WORLD, testOptions());
+  check(sim.setUp());
+  auto monitor = std::make_unique<CountingMonitor>(sim, 5, 0, "");
+  CountingMonitor &counter = *monitor;
+  sim.addMonitor(std::move(monitor));
+  check(sim.run());
+  EXPECT_EQ(sim.outcome().status, "failed: stopped by the test at step 5");
+  EXPECT_EQ(sim.outcome().steps, 5);
+  EXPECT_EQ(counter.seen, 5);
+  EXPECT_NEAR(sim.integrator()->time(), 0.005, 1e-12);
+}
+
+TEST(Simulation, RestartContinuesStateAndMonitors)
+{
+  PetscMPIInt size;
+  MPI_Comm_size(PETSC_COMM_WORLD, &size);
+  if (size > 1) GTEST_SKIP() << "bitwise restart holds on one rank";
+  const Scene scene = cantilever();
+  const std::string path = std::string(BOOMDYN_BINARY_DIR) + "/test_output/simulation_restart.chk.h5";
+  std::remove(path.c_str());
+  Simulation full(scene, PETSC_COMM_WORLD, testOptions());
+  check(full.setUp());
+  auto first = std::make_unique<CountingMonitor>(full, 0, 8, path);
+  CountingMonitor &firstCounter = *first;
+  full.addMonitor(std::move(first));
+  check(full.run());
+  ASSERT_TRUE(full.outcome().completed()) << full.outcome().status;
+  EXPECT_EQ(firstCounter.seen, 20);
+
+  SimulationOptions options = testOptions();
+  options.restartPath = path;
+  Simulation restarted(scene, PETSC_COMM_WORLD, options);
+  check(restarted.setUp());
+  auto second = std::make_unique<CountingMonitor>(restarted, 0, 0, "");
+  CountingMonitor &secondCounter = *second;
+  restarted.addMonitor(std::move(second));
+  check(restarted.run());
+  ASSERT_TRUE(restarted.outcome().completed()) << restarted.outcome().status;
+  EXPECT_TRUE(secondCounter.restored);
+  EXPECT_EQ(secondCounter.seen, 20); // 8 restored + 12 after the restart
+  EXPECT_EQ(restarted.outcome().steps, 20);
+  EXPECT_EQ(finalPositions(full), finalPositions(restarted));
+}
