@@ -516,8 +516,8 @@ def write_report(path, runs, figures, n):
     add("    /usr/bin/python3 postprocess/paper_comparison.py [--out docs] [--build build]\n")
     add("It runs the seven paper scenes of `inputs/` (docs/paper-scenes.md) with `%s`, draws every figure from "
         "the HDF5 results and computes every number below from them. The paper's numbers are quoted from its "
-        "text (H. Fujita, H. Sugiyama, Theor. Appl. Mech. Lett. 2, 063005 (2012); model.md §6); where the "
-        "paper gives only a plot, the value read off the plot (as in docs/paper-scenes.md and model.md §6) is "
+        "text (H. Fujita, H. Sugiyama, Theor. Appl. Mech. Lett. 2, 063005 (2012); docs/model.md §6); where the "
+        "paper gives only a plot, the value read off the plot (as in docs/paper-scenes.md and docs/model.md §6) is "
         "marked \"approx.\".\n" % version)
     add("| scene | input | status | steps | max constraint violation | slack-rope steps |")
     add("|---|---|---|---:|---:|---:|")

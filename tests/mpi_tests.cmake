@@ -1,5 +1,5 @@
 # The same executables on two ranks: every test that creates PETSc objects
-# then runs on a distributed layout (petsc-notes trap 1 shows up only there).
+# then runs on a distributed layout (docs/petsc-notes.md trap 1 shows up only there).
 set(BOOMDYN_MPIEXEC ${MPIEXEC_EXECUTABLE} ${MPIEXEC_NUMPROC_FLAG} 2 --oversubscribe --allow-run-as-root)
 foreach(kind verification regression)
   if(TARGET ${kind}_tests)

@@ -51,3 +51,12 @@ boomdyn_script_test(regression.restart regression/test_restart.py "regression;mp
 boomdyn_script_test(ts.options ts/test_ts_options.py ts)
 set_tests_properties(regression.restart PROPERTIES PROCESSORS 2
   ENVIRONMENT "OMPI_ALLOW_RUN_AS_ROOT=1;OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1")
+
+# Dependencies run one way (docs/architecture.md): no backward include
+# between the layers; the self-test shows the check sees one.
+add_test(NAME architecture.layers
+  COMMAND ${python} ${CMAKE_SOURCE_DIR}/tests/architecture/check_layers.py ${CMAKE_SOURCE_DIR})
+add_test(NAME architecture.layers_self_test
+  COMMAND ${python} ${CMAKE_SOURCE_DIR}/tests/architecture/check_layers.py --self-test)
+set_tests_properties(architecture.layers architecture.layers_self_test PROPERTIES LABELS architecture)
+boomdyn_script_test(postprocess.output_channels postprocess/test_output_channels.py postprocess)

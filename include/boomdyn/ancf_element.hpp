@@ -1,4 +1,4 @@
-// Planar ANCF cable element (model.md §1.1): pure kernels, no PETSc.
+// Planar ANCF cable element (docs/model.md §1.1): pure kernels, no PETSc.
 //
 // Element vector e = [r_1, r'_1, r_2, r'_2] (8 entries), cubic Hermite shape
 // functions in xi = x/l. Energy U = 1/2 ∫ EA eps^2 + EI K^2 dx with Green

@@ -3,7 +3,7 @@
 // it owns; the values they need arrive through one VecScatter into a local
 // array, residuals return by a reverse scatter (ADD), and Jacobian blocks go
 // through MatSetValuesCOO on a pattern preallocated exactly once from the
-// items' dof lists (petsc-notes, trap 1 and 2: one pattern, never mixed with
+// items' dof lists (docs/petsc-notes.md, trap 1 and 2: one pattern, never mixed with
 // MatSetValues).
 #pragma once
 
@@ -26,7 +26,7 @@ public:
 
   PetscErrorCode setUp(MPI_Comm comm);
   // After sliding joints relocate: rebuild the pattern (collective). Matrices
-  // made by createMatrix() before are stale: make new ones (petsc-notes trap 1).
+  // made by createMatrix() before are stale: make new ones (docs/petsc-notes.md trap 1).
   PetscErrorCode rebuildPattern();
   int patternVersion() const { return patternVersion_; }
   // A vector with the layout of x = [q | lambda_hat].

@@ -1,5 +1,5 @@
 // Frequencies and mode shapes of the system linearized at a state
-// (model.md §5): the constrained pencil
+// (docs/model.md §5): the constrained pencil
 //     A = [K_T  C_q^T; C_q 0],   B = [M 0; 0 0]
 // with K_T the tangent of the internal, external and constraint forces
 // (geometric terms from the multipliers included), solved with SLEPc

@@ -1,4 +1,4 @@
-// Frequencies along a trajectory (model.md §5): at each call the system is
+// Frequencies along a trajectory (docs/model.md §5): at each call the system is
 // linearized at the given state and the modes nearest half the last tracked
 // omega^2 are found (shift-and-invert, warm-started from the last tracked
 // shape); the first bending mode is followed by mode continuity, i.e. the
@@ -6,7 +6,7 @@
 // At the first call the lowest mode with omega^2 > 0 is taken.
 #pragma once
 
-#include "boomdyn/checkpoint.hpp"
+#include "boomdyn/state_archive.hpp"
 #include "boomdyn/eigen_solver.hpp"
 #include "boomdyn/petsc_handle.hpp"
 
@@ -27,8 +27,8 @@ public:
 
   PetscErrorCode analyze(double t, Vec q, Vec lambda, TrackedModes *out);
   // The followed shape and eigenvalue, for checkpoints.
-  PetscErrorCode save(CheckpointWriter &out) const;
-  PetscErrorCode restore(const CheckpointReader &in);
+  PetscErrorCode save(StateWriter &out) const;
+  PetscErrorCode restore(const StateReader &in);
 
 private:
   Assembler &assembler_;

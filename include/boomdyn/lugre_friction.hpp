@@ -1,4 +1,4 @@
-// LuGre friction at a sliding joint (model.md §3) as a work item: the
+// LuGre friction at a sliding joint (docs/model.md §3) as a work item: the
 // friction force F_t = (sigma0 z + sigma1 zdot) |lambda_n| + sigma2 v_r acts
 // along -i on the track at the contact point and along +i on the slider, and
 // the bristle state z obeys
@@ -23,7 +23,7 @@
 
 namespace boomdyn {
 
-// LuGre friction parameters (model.md §3): F_t = (sigma0 z + sigma1 zdot)
+// LuGre friction parameters (docs/model.md §3): F_t = (sigma0 z + sigma1 zdot)
 // |lambda_n| + sigma2 v_r with zdot = v_r - sigma0 |v_r| z / g(v_r),
 // g(v) = mu_c + (mu_s - mu_c) exp(-|v / v_s|^alpha). The scene schema and
 // its defaults are in src/constraints/sliding_joint_type.cpp.

@@ -44,7 +44,10 @@ struct RunOutcome {
   // Energy balance of a dynamic run (EnergyCheck): W_in, excess, involved [J].
   bool hasEnergyBalance = false;
   double inputWork = 0, energyExcess = 0, energyInvolved = 0;
-  bool completed() const { return status == "completed"; }
+  // A run that -ts_max_steps ended before t_end did what was asked: it
+  // counts as completed (exit 0), and /summary/status says why it stopped.
+  static constexpr const char *kStepLimit = "completed: stopped by -ts_max_steps before t_end";
+  bool completed() const { return status == "completed" || status == kStepLimit; }
   bool interrupted() const { return status == "interrupted"; }
 };
 

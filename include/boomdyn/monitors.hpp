@@ -51,6 +51,7 @@ public:
 private:
   PetscErrorCode writeStepRow(const RunState &s);
   PetscErrorCode writeJoints(const RunState &s);
+  PetscErrorCode writeOutputs(const RunState &s); // static runs: output channels only
 
   Simulation &sim_;
   ResultsWriter writer_;
@@ -60,7 +61,7 @@ private:
   double stateInterval_, nextState_;
   RopeTensions ropes_;
   std::vector<SensorReading> readings_;
-  std::vector<double> slacks_, multipliers_, deflections_;
+  std::vector<double> slacks_, multipliers_, deflections_, outputs_; // rank 0 data of the current step
 };
 
 class FrictionOutput : public Monitor {

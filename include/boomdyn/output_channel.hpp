@@ -1,5 +1,6 @@
-// A per-type output quantity: a value that follows linearly from one unknown
-// of the solution (value = factor * unknown). Types add channels when they
+// A per-type output quantity: a value that follows linearly from one
+// multiplier of the solution (value = factor * lambda[index]), e.g. the
+// tension of a rope or a distance link. Types add channels when they
 // are built (Model::outputChannels()); writers and monitors group them by
 // `group` instead of asking for concrete constraint classes.
 #pragma once
@@ -15,9 +16,8 @@ struct OutputChannel {
   std::string name;     // component name
   std::string quantity; // e.g. "tension"
   std::string unit;     // e.g. "N"
-  enum class Source { Coordinate, Multiplier } source = Source::Multiplier;
-  PetscInt index = 0;   // global coordinate index, or multiplier row counted from 0
-  double factor = 1;    // value = factor * unknown
+  PetscInt index = 0;   // multiplier row, counted from 0
+  double factor = 1;    // value = factor * lambda[index] (unscaled, SI units)
 };
 
 } // namespace boomdyn

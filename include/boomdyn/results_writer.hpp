@@ -38,9 +38,11 @@ public:
   PetscErrorCode open(const std::string &path, bool overwrite, const RunInfo &info, Vec layout);
   PetscErrorCode appendStep(double t, double dt, PetscInt iterations, double violation, const EnergyParts &energy,
                             const std::vector<SensorReading> &sensors);
-  // Slack coordinates and unscaled multipliers of the same step (rank 0 data).
+  // Slack coordinates and unscaled multipliers of the same step (rank 0
+  // data), and the values of the Model's output channels (/steps/outputs).
   PetscErrorCode appendJoints(const std::vector<double> &slacks, const std::vector<double> &multipliers,
-                              const std::vector<double> &ropeTensions, const std::vector<double> &frameDeflections);
+                              const std::vector<double> &ropeTensions, const std::vector<double> &frameDeflections,
+                              const std::vector<double> &outputs);
   // Full state snapshot; lambda holds unscaled multipliers in its last entries.
   PetscErrorCode appendState(double t, Vec q, Vec v, Vec lambda);
   PetscErrorCode writeModes(double t, const ModalResult &modes);

@@ -1,4 +1,4 @@
-// Wire rope over a pulley (model.md §2.2): points P (body 1), Q (pulley,
+// Wire rope over a pulley (docs/model.md §2.2): points P (body 1), Q (pulley,
 // body 2) and R (body 3) with a rope of constant length L:
 //     C = L - |r_P - r_Q| - |r_Q - r_R| = 0
 // It makes the third body extend relative to the second as fast as the second

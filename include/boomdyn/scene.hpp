@@ -50,7 +50,7 @@ struct ModalSpec {
   std::string at = "end";  // "start" (initial state) or "end" (after static/dynamic solve)
 };
 
-// Eigen-analysis along a dynamic run (model.md §5): every `interval` seconds
+// Eigen-analysis along a dynamic run (docs/model.md §5): every `interval` seconds
 // the system is linearized at the current state and `count` modes are found;
 // the first bending mode is followed by mode continuity (MAC).
 struct TrackingSpec {

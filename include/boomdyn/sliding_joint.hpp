@@ -1,4 +1,4 @@
-// Sliding joint (model.md §2.1): a slider point P, fixed on body j at
+// Sliding joint (docs/model.md §2.1): a slider point P, fixed on body j at
 // material coordinate x_P, moves along the centerline of the track body i.
 // The slack coordinate s (material coordinate of the contact point on the
 // track) is an unknown without mass. Two rows:

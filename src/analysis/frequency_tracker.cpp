@@ -15,7 +15,7 @@ PetscErrorCode modalAssurance(Vec a, Vec b, double *mac)
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode FrequencyTracker::save(CheckpointWriter &out) const
+PetscErrorCode FrequencyTracker::save(StateWriter &out) const
 {
   PetscFunctionBeginUser;
   out.addScalar("tracker.started", previous_ ? 1.0 : 0.0);
@@ -24,7 +24,7 @@ PetscErrorCode FrequencyTracker::save(CheckpointWriter &out) const
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode FrequencyTracker::restore(const CheckpointReader &in)
+PetscErrorCode FrequencyTracker::restore(const StateReader &in)
 {
   PetscFunctionBeginUser;
   if (in.scalar("tracker.started") != 0.0) {

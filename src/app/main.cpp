@@ -66,12 +66,6 @@ std::string errorLine(const std::string &scene)
   std::string message = firstPetscError;
   if (firstPetscErrorCode == PETSC_ERR_MEM || message.find("std::bad_alloc") != std::string::npos)
     message = "out of memory: the scene needs more memory than this machine has (a mesh too large? see -boom_elements)";
-  // A failed LU factorization of the saddle-point system means it is singular.
-  else if (message.find("actorization") != std::string::npos || message.find("MUMPS") != std::string::npos ||
-           message.find("pivot") != std::string::npos)
-    message = "the system matrix is singular: a body or motion without support, or redundant or contradictory "
-              "constraints (two drives on one joint, a clamp plus an angle drive at one point, ...); solver said: " +
-              message;
   return "boomdyn: error: " + aboutScene(message, scene);
 }
 

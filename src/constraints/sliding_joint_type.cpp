@@ -22,7 +22,7 @@ std::string fmt(double x)
   return out.str();
 }
 
-// LuGre parameters (model.md §3); the defaults are FrictionSpec's.
+// LuGre parameters (docs/model.md §3); the defaults are FrictionSpec's.
 const TypeSchema &frictionSchema()
 {
   static const TypeSchema schema = [] {

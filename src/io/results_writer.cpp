@@ -96,6 +96,16 @@ PetscErrorCode ResultsWriter::open(const std::string &path, bool overwrite, cons
       for (const OutputChannel &ch : model_.outputChannels())
         if (ch.group == "rope") ropes.push_back(ch.name);
       if (!ropes.empty()) file_->writeStrings("/layout/rope_names", ropes);
+      // Every registered type's output channels, in the columns of /steps/outputs.
+      std::vector<std::string> outputNames, outputUnits;
+      for (const OutputChannel &ch : model_.outputChannels()) {
+        outputNames.push_back(ch.group + "/" + ch.name + "/" + ch.quantity);
+        outputUnits.push_back(ch.unit);
+      }
+      if (!outputNames.empty()) {
+        file_->writeStrings("/layout/output_names", outputNames);
+        file_->writeStrings("/layout/output_units", outputUnits);
+      }
       if (!model_.frictionJointNames().empty())
         file_->writeStrings("/layout/friction_joint_names", model_.frictionJointNames());
       std::vector<std::string> frames;
@@ -158,7 +168,8 @@ PetscErrorCode ResultsWriter::appendStep(double t, double dt, PetscInt iteration
 
 PetscErrorCode ResultsWriter::appendJoints(const std::vector<double> &slacks, const std::vector<double> &multipliers,
                                            const std::vector<double> &ropeTensions,
-                                           const std::vector<double> &frameDeflections)
+                                           const std::vector<double> &frameDeflections,
+                                           const std::vector<double> &outputs)
 {
   PetscFunctionBeginUser;
   PetscCall(onRankZero(comm_, rank_, [&] {
@@ -167,6 +178,7 @@ PetscErrorCode ResultsWriter::appendJoints(const std::vector<double> &slacks, co
     if (!ropeTensions.empty()) file_->appendRow("/steps/rope_tension", ropeTensions.data(), ropeTensions.size());
     if (!frameDeflections.empty())
       file_->appendRow("/steps/frame_deflection", frameDeflections.data(), frameDeflections.size());
+    if (!outputs.empty()) file_->appendRow("/steps/outputs", outputs.data(), outputs.size());
   }));
   PetscFunctionReturn(0);
 }

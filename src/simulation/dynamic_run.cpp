@@ -85,6 +85,7 @@ PetscErrorCode Simulation::runDynamic(const std::function<bool()> &stop)
   outcome_.newtonIterations = summary_.newtonIterations;
   if (summary_.interrupted) outcome_.status = "interrupted";
   else if (!summary_.completed) outcome_.status = "failed: " + failureDetails(summary_.failure);
+  else if (summary_.stepLimit) outcome_.status = RunOutcome::kStepLimit; // what the user asked for: exit 0
   // The final state for the monitors' finish(); its diagnostics are those
   // of the last accepted step, already seen.
   state.t = integrator_->time();

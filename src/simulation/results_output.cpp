@@ -38,7 +38,23 @@ PetscErrorCode ResultsOutput::writeJoints(const RunState &s)
   PetscCall(sim_.sensors().readJoints(s.q, s.lambda, slacks_, multipliers_));
   PetscCall(sim_.sensors().readFrames(s.q, deflections_));
   PetscCall(ropes_.update(sim_.comm(), s.t, multipliers_, tensions));
-  PetscCall(writer_.appendJoints(slacks_, multipliers_, tensions, deflections_));
+  // The registered types' output channels (rank 0 holds the multipliers).
+  outputs_.clear();
+  if (!multipliers_.empty())
+    for (const OutputChannel &ch : sim_.model().outputChannels()) outputs_.push_back(ch.factor * multipliers_[ch.index]);
+  PetscCall(writer_.appendJoints(slacks_, multipliers_, tensions, deflections_, outputs_));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ResultsOutput::writeOutputs(const RunState &s)
+{
+  PetscFunctionBeginUser;
+  if (sim_.model().outputChannels().empty()) PetscFunctionReturn(0);
+  PetscCall(sim_.sensors().readJoints(s.q, s.lambda, slacks_, multipliers_));
+  outputs_.clear();
+  if (!multipliers_.empty())
+    for (const OutputChannel &ch : sim_.model().outputChannels()) outputs_.push_back(ch.factor * multipliers_[ch.index]);
+  PetscCall(writer_.appendJoints({}, {}, {}, {}, outputs_));
   PetscFunctionReturn(0);
 }
 
@@ -58,7 +74,10 @@ PetscErrorCode ResultsOutput::afterStep(const RunState &s, std::string *)
 {
   PetscFunctionBeginUser;
   PetscCall(writeStepRow(s));
-  if (!s.dynamic) PetscFunctionReturn(0);
+  if (!s.dynamic) { // converged load increments: the output channels only
+    PetscCall(writeOutputs(s));
+    PetscFunctionReturn(0);
+  }
   PetscCall(writeJoints(s));
   if ((stateInterval_ > 0 && s.t >= nextState_ - 1e-9 * s.h) || s.last) {
     PetscCall(writer_.appendState(s.t, s.q, s.v, s.lambda));

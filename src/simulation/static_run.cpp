@@ -34,6 +34,7 @@ PetscErrorCode Simulation::runStatic()
     state.iterations = s.iterations;
     state.step = ++outcome_.steps;
     state.last = s.loadFactor >= 1;
+    state.lambda = statics_->multipliers(); // of this increment (output channels)
     std::string unused; // static runs have no checks that end them
     PetscCall(afterStep(state, &unused));
     PetscFunctionReturn(0);

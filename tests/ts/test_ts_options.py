@@ -63,6 +63,10 @@ def main():
     check(code == 0, "-ts_max_steps 5: exits 0 (got %d: %s)" % (code, text.strip()[-200:]))
     check(len(t) == 6 and abs(t[-1] - 0.005) < 1e-12,
           "-ts_max_steps 5: 5 steps after the initial row, last at 0.005 s (got %d rows, last %s)" % (len(t), t[-1:]))
+    with h5py.File(out) as f:
+        status = f["summary"].attrs["status"]
+        status = status.decode() if isinstance(status, bytes) else str(status)
+    check("-ts_max_steps" in status, "-ts_max_steps 5: /summary/status says the step limit ended the run (got %r)" % status)
 
     code, _, out = run(pendulum, "matchstep", ["-ts_max_time", "0.0105"])
     t = times(out)

@@ -30,7 +30,6 @@ static: {load_steps: 2}
   const OutputChannel &tension = model.outputChannels()[0];
   EXPECT_EQ(tension.group, "distance");
   EXPECT_EQ(tension.name, "stay");
-  EXPECT_EQ(tension.source, OutputChannel::Source::Multiplier);
   EXPECT_EQ(tension.index, 2);
 
   Assembler assembler(model);

@@ -1,4 +1,4 @@
-// Frequencies from the linearized constrained system (model.md §5) along a
+// Frequencies from the linearized constrained system (docs/model.md §5) along a
 // run and at static states: cantilever with and without a tip mass (tracked),
 // a beam under axial tension and compression, and the paper's telescope
 // (retracted, extended) against an independent pad-coupled beam model.
