@@ -96,6 +96,7 @@ public:
 
 private:
   friend class ModelBuilder; // the physics types build the Model through it
+  friend class BodyBuilder;  // and the body types
   void checkInitialConfiguration() const;
 
   Scene scene_;

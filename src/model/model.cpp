@@ -1,11 +1,9 @@
 #include "boomdyn/model.hpp"
 
 #include "boomdyn/ancf_beam.hpp"
-#include "boomdyn/beam_element_item.hpp"
 #include "boomdyn/lugre_friction.hpp"
 #include "boomdyn/model_builder.hpp"
 #include "boomdyn/physics_type.hpp"
-#include "boomdyn/rigid_body.hpp"
 
 #include <Eigen/Eigenvalues>
 
@@ -23,8 +21,6 @@ std::string where(const SourceMark &m)
   return os.str();
 }
 
-Vec2 toVec(const Vec2d &v) { return Vec2(v[0], v[1]); }
-
 // Largest omega^2 of one straight, unstrained element: K v = omega^2 M v.
 double elementOmegaMax2(const ancf::Section &sec, double l)
 {
@@ -41,23 +37,10 @@ double elementOmegaMax2(const ancf::Section &sec, double l)
 
 Model::Model(const Scene &scene) : scene_(scene)
 {
-  const Vec2 g = toVec(scene.gravity);
-  for (const BodySpec &b : scene.bodies) {
-    if (b.type == BodySpec::Type::Rigid) {
-      // Mass from the section's mass per length; EA and EI play no part.
-      auto rigid = std::make_unique<RigidBody>(b.name, b.length, b.section.rhoA * b.length, toVec(b.origin), b.angle, nq_);
-      nq_ += rigid->numCoordinates();
-      items_.push_back(std::make_unique<RigidBodyItem>(*rigid, g));
-      bodies_.push_back(std::move(rigid));
-      continue;
-    }
-    const ancf::Section sec{b.section.EA, b.section.EI, b.section.rhoA};
-    auto beam = std::make_unique<AncfBeam>(b.name, b.length, b.elements, sec, toVec(b.origin), b.angle, nq_);
-    nq_ += beam->numCoordinates();
-    auto mass = std::make_shared<const ancf::Mat8>(ancf::massMatrix(sec.rhoA, beam->elementLength()));
-    for (int el = 0; el < beam->numElements(); ++el) items_.push_back(std::make_unique<BeamElementItem>(*beam, el, mass, g));
-    bodies_.push_back(std::move(beam));
-  }
+  // Bodies first, in scene order, each by its body type (physics_type.hpp):
+  // their coordinates come first.
+  BodyBuilder bodies(*this);
+  for (const BodySpec &b : scene.bodies) bodyType(b.type).buildBody(b, bodies);
   // Everything else is built by its physics type (physics_type.hpp), stage
   // by stage over all components, so that the unknowns are numbered
   // [body coordinates | extra coordinates | first-order states | multiplier
