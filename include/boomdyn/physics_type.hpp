@@ -51,6 +51,11 @@ struct PhysicsType {
   BodySpec::Type bodyKind = BodySpec::Type::AncfBeam;
   void (*describeBody)(const ComponentSpec &spec, BodySpec &body) = nullptr;
   void (*buildBody)(const BodySpec &body, BodyBuilder &builder) = nullptr;
+  // Flexible bodies: the largest omega^2 (rad^2/s^2) of one straight,
+  // unstrained element of length elementLength, for the Model's estimate of
+  // the Newton matrix's conditioning (Model::iterationConditioning); nullptr
+  // for bodies without elastic modes.
+  double (*elementOmegaMax2)(const BodySpec &body, double elementLength) = nullptr;
 };
 
 // Helpers for derived defaults: the body of that name (the reader has

@@ -6,6 +6,8 @@
 #include "boomdyn/beam_element_item.hpp"
 #include "boomdyn/model_builder.hpp"
 
+#include <Eigen/Eigenvalues>
+
 namespace boomdyn {
 
 namespace {
@@ -43,6 +45,19 @@ void buildAncfBeam(const BodySpec &b, BodyBuilder &builder)
     builder.addItem(std::make_unique<BeamElementItem>(beam, el, mass, builder.gravity()));
 }
 
+// Largest omega^2 of one straight, unstrained element: K v = omega^2 M v.
+double elementOmegaMax2(const BodySpec &b, double l)
+{
+  const ancf::Section sec{b.section.EA, b.section.EI, b.section.rhoA};
+  const ancf::Vec8 e = ancf::straightElement(Vec2::Zero(), Vec2(1, 0), l);
+  ancf::Vec8 f;
+  ancf::Mat8 K;
+  ancf::internalForce(sec, l, e, f, &K);
+  const Eigen::GeneralizedSelfAdjointEigenSolver<ancf::Mat8> eig(0.5 * (K + K.transpose()), ancf::massMatrix(sec.rhoA, l),
+                                                                  Eigen::EigenvaluesOnly);
+  return eig.eigenvalues().maxCoeff();
+}
+
 } // namespace
 
 PhysicsType ancfBeamType()
@@ -66,6 +81,7 @@ PhysicsType ancfBeamType()
   t.bodyKind = BodySpec::Type::AncfBeam;
   t.describeBody = describeAncfBeam;
   t.buildBody = buildAncfBeam;
+  t.elementOmegaMax2 = elementOmegaMax2;
   return t;
 }
 
