@@ -31,11 +31,12 @@ TypeSchema schema(const std::string &bodyType, bool stiffness)
   if (stiffness) {
     s.summary = "exactly one of two forms: the stiffnesses (`EA`, `EI`, `rhoA`), or the material and geometry "
                 "(`E`, `A`, `I`, `rho`; then EA = E·A, EI = E·I, rhoA = rho·A).";
-    // Schema order is checking order: the material form as A, rho, E, I.
+    // Schema order is the order of checks and of "allowed keys here" in messages.
     s.keys = {sectionKey("EA", "N", "axial stiffness"), sectionKey("EI", "N m^2", "bending stiffness"),
-              sectionKey("rhoA", "kg/m", "mass per length"), sectionKey("A", "m^2", "cross-section area"),
-              sectionKey("rho", "kg/m^3", "density"), sectionKey("E", "Pa", "Young's modulus"),
-              sectionKey("I", "m^4", "second moment of area about the axis normal to the plane (bending axis)")};
+              sectionKey("rhoA", "kg/m", "mass per length"), sectionKey("E", "Pa", "Young's modulus"),
+              sectionKey("A", "m^2", "cross-section area"),
+              sectionKey("I", "m^4", "second moment of area about the axis normal to the plane (bending axis)"),
+              sectionKey("rho", "kg/m^3", "density")};
     s.forms = {{"EA", "EI", "rhoA"}, {"E", "A", "I", "rho"}};
     s.formsText = "EA, EI, rhoA, or E, A, I, rho";
     return s;
