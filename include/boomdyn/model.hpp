@@ -77,7 +77,8 @@ public:
   std::vector<double> initialCoordinates() const;
 
   // Conditioning of the Newton iteration matrix M/(beta h^2) + K of a dynamic
-  // run, estimated per ANCF beam from its element data: (omega_max h)^2 beta,
+  // run, estimated per flexible body (its type's elementOmegaMax2) from its
+  // element data: (omega_max h)^2 beta,
   // with omega_max^2 the largest eigenvalue of one straight element's
   // stiffness against its mass (it grows like EI / (rhoA l^4) with the
   // element length l). Above kIllConditioned double precision no longer
@@ -96,6 +97,7 @@ public:
 
 private:
   friend class ModelBuilder; // the physics types build the Model through it
+  friend class BodyBuilder;  // and the body types
   void checkInitialConfiguration() const;
 
   Scene scene_;

@@ -14,6 +14,30 @@
 
 namespace boomdyn {
 
+// What a body type's builder may do (physics_type.hpp: buildBody): add its
+// body, whose coordinates follow those of the bodies before it, and the
+// body's work items. The Model hands one BodyBuilder to the body types, in
+// scene order, before any other type is built.
+class BodyBuilder {
+public:
+  explicit BodyBuilder(Model &model) : model_(model) {}
+
+  Vec2 gravity() const { return Vec2(model_.scene_.gravity[0], model_.scene_.gravity[1]); }
+  // The index of the new body's first coordinate.
+  PetscInt firstCoordinate() const { return model_.nq_; }
+  // Takes the body built on firstCoordinate() and numbers its coordinates.
+  const Body &addBody(std::unique_ptr<Body> body)
+  {
+    model_.nq_ += body->numCoordinates();
+    model_.bodies_.push_back(std::move(body));
+    return *model_.bodies_.back();
+  }
+  void addItem(std::unique_ptr<WorkItem> item) { model_.items_.push_back(std::move(item)); }
+
+private:
+  Model &model_;
+};
+
 class ModelBuilder {
 public:
   explicit ModelBuilder(Model &model) : model_(model), q0_(model.initialCoordinates()) {}

@@ -19,6 +19,7 @@
 
 namespace boomdyn {
 
+class BodyBuilder;
 class ModelBuilder;
 
 // A problem found by a type's cross-check: the key (relative to the
@@ -41,6 +42,20 @@ struct PhysicsType {
   void (*addCoordinates)(const ComponentSpec &spec, ModelBuilder &builder) = nullptr;
   void (*addStates)(const ComponentSpec &spec, ModelBuilder &builder) = nullptr;
   void (*build)(const ComponentSpec &spec, ModelBuilder &builder) = nullptr;
+
+  // Body types only (section "bodies"). Bodies are built from the typed
+  // view BodySpec, which command-line options (-boom_elements) and tests
+  // change after reading: describeBody fills it from the read component,
+  // buildBody adds the body and its work items to the Model. bodyKind is
+  // the BodySpec::type that selects this type.
+  BodySpec::Type bodyKind = BodySpec::Type::AncfBeam;
+  void (*describeBody)(const ComponentSpec &spec, BodySpec &body) = nullptr;
+  void (*buildBody)(const BodySpec &body, BodyBuilder &builder) = nullptr;
+  // Flexible bodies: the largest omega^2 (rad^2/s^2) of one straight,
+  // unstrained element of length elementLength, for the Model's estimate of
+  // the Newton matrix's conditioning (Model::iterationConditioning); nullptr
+  // for bodies without elastic modes.
+  double (*elementOmegaMax2)(const BodySpec &body, double elementLength) = nullptr;
 };
 
 // Helpers for derived defaults: the body of that name (the reader has
@@ -60,5 +75,7 @@ const std::vector<PhysicsType> &physicsTypes();
 std::vector<const PhysicsType *> physicsTypesOf(const std::string &section);
 // nullptr if the section has no such type.
 const PhysicsType *findPhysicsType(const std::string &section, const std::string &type);
+// The body type of a body (section "bodies"); every BodySpec::Type has one.
+const PhysicsType &bodyType(BodySpec::Type kind);
 
 } // namespace boomdyn

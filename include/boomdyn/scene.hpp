@@ -1,6 +1,7 @@
 // A scene as validated plain data: what the scene file says, in SI units
-// (angles in radians). Bodies and analysis settings have fixed fields; the
-// other components (constraints, loads, masses, springs, sensors) are
+// (angles in radians). Analysis settings have fixed fields; bodies are the
+// typed views (BodySpec) their registered body types fill; the other
+// components (constraints, loads, masses, springs, sensors) are
 // ComponentSpecs of registered physics types (physics_type.hpp). The reader
 // (io/scene_reader) fills it and rejects bad input; the Model is built from
 // it. Nothing downstream reads the YAML text again, except to store it in
@@ -20,6 +21,10 @@ struct SectionSpec {
   double rhoA = 0; // mass per length, kg/m
 };
 
+// A body as its type (src/bodies/*_type.cpp) describes it after reading,
+// and as the command-line options (-boom_elements) and tests may change it
+// before the Model is built from it by the same type. Type selects the
+// registered body type (bodyType() in physics_type.hpp).
 struct BodySpec {
   enum class Type { AncfBeam, Rigid };
   std::string name;
@@ -28,7 +33,7 @@ struct BodySpec {
   int elements = 1;   // ANCF beams only
   Vec2d origin{0, 0}; // position of s = 0 in the initial configuration, m
   double angle = 0;   // initial direction of the axis, rad (counter-clockwise from x)
-  SectionSpec section;
+  SectionSpec section; // in the stiffness form, whichever form the scene used
   SourceMark mark;
 };
 

@@ -13,6 +13,7 @@ namespace boomdyn {
 
 enum class ValueKind {
   Number,             // a finite number
+  Angle,              // a finite number in degrees (stored in radians)
   Integer,            // a whole number (8, 8.0 or 1e6)
   Name,               // letters, digits, '_', '-', '.'
   Vec2,               // [x, y]
@@ -32,6 +33,7 @@ enum class Need {
   Required,        // always
   RequiredWith,    // when KeySchema::other is given
   RequiredWithout, // when KeySchema::other is not given
+  InForm,          // when the map is written in the form (TypeSchema::forms) that lists this key
 };
 
 struct TypeSchema;
@@ -44,6 +46,7 @@ struct KeySchema {
   std::string other;       // the key that Need::RequiredWith/RequiredWithout refers to
   Limit limit = Limit::None;
   int minInt = 0, maxInt = 0; // Integer: allowed range
+  std::string tooLarge;       // Integer: why the upper limit exists ("mesh too large"), for the message
   // Optional keys: the value used when the key is absent (Number only;
   // hasDefault false: the key stays absent and the builder derives it).
   bool hasDefault = false;
@@ -60,6 +63,7 @@ struct KeySchema {
   KeySchema positive() const { return with([](KeySchema &k) { k.limit = Limit::Positive; }); }
   KeySchema nonNegative() const { return with([](KeySchema &k) { k.limit = Limit::NonNegative; }); }
   KeySchema between(int lo, int hi) const { return with([&](KeySchema &k) { k.minInt = lo, k.maxInt = hi; }); }
+  KeySchema tooLargeMeans(std::string why) const { return with([&](KeySchema &k) { k.tooLarge = why; }); }
   KeySchema byDefault(double value, std::string text = "") const
   {
     return with([&](KeySchema &k) { k.hasDefault = true, k.defaultNumber = value, k.defaultText = text; });
@@ -120,12 +124,18 @@ inline KeyRule forbidIfAbsent(std::string condition, std::string key, std::strin
 }
 
 struct TypeSchema {
-  std::string section; // "constraints", "loads", "masses", "springs", "output.sensors", "output.frames"
+  std::string section; // "bodies", "constraints", "loads", "masses", "springs", "output.sensors", "output.frames"
   std::string type;    // the value of `type:` ("pin"); sections without a type key have one type
   std::string summary; // one line for the docs
   std::string defaultName; // name prefix when `name` is absent: prefix + index in the section
   std::vector<KeySchema> keys;
   std::vector<KeyRule> rules;
+  // Alternative ways to write the map (a body's section: stiffnesses, or
+  // material and geometry): each form lists its keys; a map must use
+  // exactly one form, whose Need::InForm keys are then required.
+  // formsText names them in messages ("rhoA, or rho and A").
+  std::vector<std::vector<std::string>> forms;
+  std::string formsText;
 
   const KeySchema *find(const std::string &key) const
   {

@@ -24,7 +24,6 @@ namespace boomdyn::scene_io {
 
 constexpr double kPi = 3.14159265358979323846264338327950288;
 constexpr double kRadPerDeg = kPi / 180.0;
-constexpr int kMaxElements = 10000000; // beyond this the Jacobian alone is many GB
 constexpr int kMaxModes = 1000;
 constexpr int kMaxLoadSteps = 1000000;
 constexpr int kMaxNewton = 1000;
@@ -183,5 +182,8 @@ protected:
 // scene, each checked against its type's schema (component_reader.cpp).
 void readComponents(const Reporter &report, const MapView &parent, const std::string &key, const std::string &section,
                     Scene &scene);
+// Reads the items of `bodies` against the schemas of the body types and
+// appends their typed views (BodySpec) to scene.bodies (component_reader.cpp).
+void readBodies(const Reporter &report, const std::vector<Field> &items, Scene &scene);
 
 } // namespace boomdyn::scene_io

@@ -16,11 +16,18 @@ namespace boomdyn::scene_io {
 namespace {
 
 // Sections whose items name their type with `type:`; the others hold one type.
-bool hasTypeKey(const std::string &section) { return section == "constraints" || section == "loads"; }
+bool hasTypeKey(const std::string &section)
+{
+  return section == "bodies" || section == "constraints" || section == "loads";
+}
+// Bodies: `type` may be left out (the first registered body type) and
+// `name` is required, since constraints and loads refer to bodies by name.
+bool isBodies(const std::string &section) { return section == "bodies"; }
 
 // The noun in "duplicate <noun> name".
 std::string itemNoun(const std::string &section)
 {
+  if (section == "bodies") return "body";
   if (section == "constraints") return "constraint";
   if (section == "loads") return "load";
   if (section == "masses") return "mass";
@@ -47,6 +54,9 @@ private:
                 std::map<std::string, Field> &fields) const;
   void readValue(const Field &f, const KeySchema &k, const std::string &section, const Scene &scene,
                  const std::string &prefix, ComponentSpec &spec, std::map<std::string, Field> &fields) const;
+  // The index of the form (TypeSchema::forms) the map is written in;
+  // forms.size() when the schema has none. Rejects a mix and no form.
+  std::size_t chooseForm(const MapView &m, const TypeSchema &schema) const;
 };
 
 } // namespace
@@ -66,6 +76,33 @@ void readComponents(const Reporter &report, const MapView &parent, const std::st
   }
 }
 
+void readBodies(const Reporter &report, const std::vector<Field> &items, Scene &scene)
+{
+  const ComponentReader reader(report);
+  std::map<std::string, std::string> taken;
+  for (std::size_t i = 0; i < items.size(); ++i) {
+    const ComponentSpec spec = reader.parseComponent(items[i], i, "bodies", scene, taken);
+    BodySpec body;
+    findPhysicsType("bodies", spec.type)->describeBody(spec, body);
+    scene.bodies.push_back(std::move(body));
+  }
+}
+
+std::size_t ComponentReader::chooseForm(const MapView &m, const TypeSchema &schema) const
+{
+  std::size_t chosen = schema.forms.size(), used = 0;
+  for (std::size_t i = 0; i < schema.forms.size(); ++i)
+    for (const std::string &key : schema.forms[i])
+      if (m.has(key)) {
+        ++used, chosen = i;
+        break;
+      }
+  if (schema.forms.empty()) return chosen;
+  if (used > 1) report_.fail(m.self(), "give either " + schema.formsText + " (not a mix of the two forms)");
+  if (used == 0) report_.fail(m.self(), "needs " + schema.formsText);
+  return chosen;
+}
+
 ComponentSpec ComponentReader::parseComponent(const Field &f, std::size_t index, const std::string &section,
                                           const Scene &scene, std::map<std::string, std::string> &taken) const
 {
@@ -73,16 +110,20 @@ ComponentSpec ComponentReader::parseComponent(const Field &f, std::size_t index,
   // Every key of every type of the section is known here, so that a key of
   // a sibling type gets "only allowed for ..." rather than "unknown key".
   std::vector<std::string> allowed{"name"}, typeNames;
-  if (hasTypeKey(section)) allowed.insert(allowed.begin(), "type");
+  if (hasTypeKey(section)) allowed.insert(isBodies(section) ? allowed.end() : allowed.begin(), "type");
   for (const PhysicsType *t : types) {
     typeNames.push_back(t->schema.type);
     for (const KeySchema &k : t->schema.keys)
       if (std::find(allowed.begin(), allowed.end(), k.key) == allowed.end()) allowed.push_back(k.key);
   }
   const MapView m(report_, f, allowed);
+  if (isBodies(section)) m.require("name");
   const PhysicsType *type = types.at(0);
-  if (hasTypeKey(section))
+  if (isBodies(section)) {
+    if (const auto t = m.get("type")) type = types[choice(*t, typeNames)];
+  } else if (hasTypeKey(section)) {
     type = types[choice(m.require("type", " (one of " + join(typeNames) + ")"), typeNames)];
+  }
   ComponentSpec spec;
   spec.type = type->schema.type;
   spec.mark = report_.sourceMark(f);
@@ -122,14 +163,19 @@ void ComponentReader::readKeys(const MapView &m, const TypeSchema &schema, const
     }
   for (const KeyRule &rule : schema.rules) {
     const bool given = !rule.condition.empty() && m.has(rule.condition);
-    if ((rule.when == KeyRule::When::IfPresent && given) || (rule.when == KeyRule::When::IfAbsent && !given))
+    // Always: keys no sibling owns (a rigid section's stiffnesses); the others were rejected above.
+    if (rule.when == KeyRule::When::Always || (rule.when == KeyRule::When::IfPresent && given) ||
+        (rule.when == KeyRule::When::IfAbsent && !given))
       m.forbid(rule.key, rule.reason);
   }
+  const std::size_t form = chooseForm(m, schema);
   for (const KeySchema &k : schema.keys) {
     const std::optional<Field> given = m.get(k.key);
     if (!given) {
+      const bool inForm = form < schema.forms.size() && std::find(schema.forms[form].begin(), schema.forms[form].end(),
+                                                                  k.key) != schema.forms[form].end();
       const bool needed = k.need == Need::Required || (k.need == Need::RequiredWith && m.has(k.other)) ||
-                          (k.need == Need::RequiredWithout && !m.has(k.other));
+                          (k.need == Need::RequiredWithout && !m.has(k.other)) || (k.need == Need::InForm && inForm);
       if (needed) m.require(k.key);
       if (k.hasDefault) spec.set(k.key, k.defaultNumber);
       continue;
@@ -146,8 +192,11 @@ void ComponentReader::readValue(const Field &f, const KeySchema &k, const std::s
   case ValueKind::Number:
     spec.set(k.key, k.limit == Limit::Positive ? positive(f) : k.limit == Limit::NonNegative ? nonNegative(f) : number(f));
     return;
+  case ValueKind::Angle:
+    spec.set(k.key, number(f) * kRadPerDeg);
+    return;
   case ValueKind::Integer:
-    spec.set(k.key, static_cast<double>(integer(f, k.minInt, k.maxInt)));
+    spec.set(k.key, static_cast<double>(integer(f, k.minInt, k.maxInt, k.tooLarge)));
     return;
   case ValueKind::Name:
     spec.set(k.key, name(f));
@@ -181,8 +230,11 @@ void ComponentReader::readValue(const Field &f, const KeySchema &k, const std::s
     return;
   }
   case ValueKind::Map: {
+    // Keys its rules forbid are known here too (their reason beats "unknown key").
     std::vector<std::string> keys;
     for (const KeySchema &nested : k.nested->keys) keys.push_back(nested.key);
+    for (const KeyRule &rule : k.nested->rules)
+      if (std::find(keys.begin(), keys.end(), rule.key) == keys.end()) keys.push_back(rule.key);
     const MapView m(report_, f, keys);
     ComponentSpec nested(k.nested->type, spec.name + "." + k.key);
     nested.mark = report_.sourceMark(f);

@@ -5,8 +5,8 @@
 // key path and source position, so any rejection can say
 // "<file>:<line>:<column>: key '<path>': <reason>". The reader stops at the
 // first error: later errors are often consequences of the first one. This
-// file reads the document, the top level, bodies and analysis settings; the
-// components of physics types are read by component_reader.cpp.
+// file reads the document, the top level and analysis settings; bodies and
+// the components of physics types are read by component_reader.cpp.
 #include "boomdyn/scene_reader.hpp"
 
 #include "checked_yaml.hpp"
@@ -39,8 +39,6 @@ public:
 
 private:
   // --- sections ----------------------------------------------------------
-  BodySpec parseBody(const Field &f, std::map<std::string, std::string> &taken) const;
-  SectionSpec parseSection(const Field &f, bool rigid) const;
   // Components of registered physics types: component_reader.cpp.
   void parseSection(const MapView &parent, const std::string &key, const std::string &section, Scene &scene) const
   {
@@ -75,9 +73,7 @@ void SceneParser::parse(const Field &root, Scene &scene)
   const std::vector<Field> bodies = list(bodies_field);
   if (bodies.empty())
     report_.fail(bodies_field, "needs at least one body");
-  std::map<std::string, std::string> body_names;
-  for (const Field &item : bodies)
-    scene.bodies.push_back(parseBody(item, body_names));
+  readBodies(report_, bodies, scene); // by the body types' schemas: component_reader.cpp
 
   parseSection(top, "constraints", "constraints", scene);
   parseSection(top, "loads", "loads", scene);
@@ -113,81 +109,6 @@ void SceneParser::parse(const Field &root, Scene &scene)
   }
   if (const auto o = top.get("output"))
     parseOutput(*o, scene);
-}
-
-BodySpec SceneParser::parseBody(const Field &f, std::map<std::string, std::string> &taken) const
-{
-  const MapView m(report_, f, {"name", "type", "length", "elements", "origin", "angle", "section"});
-  BodySpec b;
-  b.mark = report_.sourceMark(f);
-  const Field name_field = m.require("name");
-  b.name = name(name_field);
-  claimName(taken, b.name, name_field, "body", f.path);
-
-  if (const auto t = m.get("type"))
-    b.type = choice(*t, {"ancf_beam", "rigid"}) == 0 ? BodySpec::Type::AncfBeam : BodySpec::Type::Rigid;
-  const bool rigid = b.type == BodySpec::Type::Rigid;
-
-  b.length = positive(m.require("length"));
-  if (rigid) {
-    m.forbid("elements", "not allowed for a rigid body (it has no mesh)");
-    b.elements = 1;
-  } else {
-    b.elements = integer(m.require("elements"), 1, kMaxElements, "mesh too large");
-  }
-  if (const auto o = m.get("origin"))
-    b.origin = vec2(*o);
-  if (const auto a = m.get("angle"))
-    b.angle = number(*a) * kRadPerDeg;
-  b.section = parseSection(m.require("section"), rigid);
-  return b;
-}
-
-// Two ways to give a section: the stiffnesses directly (EA, EI, rhoA) or
-// the material and geometry (E, A, I, rho). A rigid body needs only its
-// mass per length (rhoA, or rho and A).
-SectionSpec SceneParser::parseSection(const Field &f, bool rigid) const
-{
-  const MapView m(report_, f, {"EA", "EI", "rhoA", "E", "A", "I", "rho"});
-  if (rigid)
-    for (const char *key : {"EA", "EI", "E", "I"})
-      m.forbid(key, "a rigid body has no stiffness; give its mass per length: rhoA, or rho and A");
-  const bool direct = m.has("EA") || m.has("EI") || m.has("rhoA");
-  const bool material = m.has("E") || m.has("A") || m.has("I") || m.has("rho");
-  const std::string forms = rigid ? "rhoA, or rho and A" : "EA, EI, rhoA, or E, A, I, rho";
-  if (direct && material)
-    report_.fail(f, "give either " + forms + " (not a mix of the two forms)");
-  if (!direct && !material)
-    report_.fail(f, "needs " + forms);
-
-  SectionSpec s;
-  if (direct) {
-    if (!rigid) {
-      s.EA = positive(m.require("EA"));
-      s.EI = positive(m.require("EI"));
-    }
-    s.rhoA = positive(m.require("rhoA"));
-    return s;
-  }
-  // Products of large or small inputs can overflow or underflow.
-  const auto product = [&](const Field &where, double a, double b, const std::string &what) {
-    const double p = a * b;
-    if (!std::isfinite(p) || !(p > 0))
-      report_.fail(where, what + " = " + fmt(a) + " * " + fmt(b) + " is out of range");
-    return p;
-  };
-  const double A = positive(m.require("A"));
-  const Field rho_field = m.require("rho");
-  const double rho = positive(rho_field);
-  s.rhoA = product(rho_field, rho, A, "rhoA");
-  if (!rigid) {
-    const Field E_field = m.require("E");
-    const double E = positive(E_field);
-    const double I = positive(m.require("I"));
-    s.EA = product(E_field, E, A, "EA");
-    s.EI = product(E_field, E, I, "EI");
-  }
-  return s;
 }
 
 DynamicSpec SceneParser::parseDynamic(const Field &f) const

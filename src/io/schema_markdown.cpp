@@ -26,6 +26,8 @@ std::string needText(const KeySchema &k)
     return "with " + code(k.other);
   case Need::RequiredWithout:
     return "unless " + code(k.other);
+  case Need::InForm:
+    return "in its form";
   case Need::Optional:
     break;
   }
@@ -36,6 +38,8 @@ std::string kindText(const KeySchema &k)
 {
   switch (k.kind) {
   case ValueKind::Number:
+    return "number";
+  case ValueKind::Angle:
     return "number";
   case ValueKind::Integer:
     return "integer";
@@ -82,8 +86,15 @@ void table(std::ostream &out, const TypeSchema &s, bool typeKey, bool nameKey)
 {
   out << "| key | required | kind | unit | default | limits | meaning |\n";
   out << "| --- | --- | --- | --- | --- | --- | --- |\n";
-  if (typeKey) out << "| `type` | yes | " << code(s.type) << " | | | | selects this table |\n";
-  if (nameKey)
+  // Bodies: `type` may be left out (the first body type), `name` may not.
+  const bool bodies = s.section == "bodies";
+  const PhysicsType *defaultBody = bodies ? physicsTypesOf("bodies").at(0) : nullptr;
+  if (typeKey)
+    out << "| `type` | " << (bodies && defaultBody->schema.type != s.type ? "yes" : "no") << " | " << code(s.type)
+        << " | | " << (bodies ? code(defaultBody->schema.type) : "") << " | | selects this table |\n";
+  if (nameKey && bodies)
+    out << "| `name` | yes | name | | | unique among bodies | constraints, loads and sensors refer to it |\n";
+  else if (nameKey)
     out << "| `name` | no | name | | " << code(s.defaultName + "<index>") << " | unique among " << sectionNoun(s.section)
         << " | index: position in the list, from 0 |\n";
   for (const KeySchema &k : s.keys)
@@ -104,7 +115,7 @@ void table(std::ostream &out, const TypeSchema &s, bool typeKey, bool nameKey)
 std::string schemaMarkdown(const std::string &section)
 {
   std::ostringstream out;
-  const bool typeKey = section == "constraints" || section == "loads";
+  const bool typeKey = section == "bodies" || section == "constraints" || section == "loads";
   bool first = true;
   for (const PhysicsType *t : physicsTypesOf(section)) {
     const TypeSchema &s = t->schema;
@@ -115,6 +126,7 @@ std::string schemaMarkdown(const std::string &section)
       if (k.kind == ValueKind::Map && k.nested) {
         out << "\n" << code(s.type) << "." << code(k.key) << ": " << k.nested->summary << "\n\n";
         table(out, *k.nested, false, false);
+        if (!k.nested->forms.empty()) out << "\nForms: " << k.nested->formsText << " (exactly one).\n";
       }
   }
   return out.str();
@@ -123,7 +135,9 @@ std::string schemaMarkdown(const std::string &section)
 std::string regenerateSchemaBlocks(const std::string &doc)
 {
   std::string out = doc;
-  for (const std::string &section : Scene::componentSections()) {
+  std::vector<std::string> sections{"bodies"};
+  for (const std::string &section : Scene::componentSections()) sections.push_back(section);
+  for (const std::string &section : sections) {
     const std::string begin = "<!-- BEGIN generated: " + section + " -->\n", end = "<!-- END generated: " + section + " -->";
     const std::size_t a = out.find(begin);
     if (a == std::string::npos) throw std::runtime_error("no line '" + begin.substr(0, begin.size() - 1) + "'");

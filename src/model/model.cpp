@@ -1,13 +1,8 @@
 #include "boomdyn/model.hpp"
 
-#include "boomdyn/ancf_beam.hpp"
-#include "boomdyn/beam_element_item.hpp"
 #include "boomdyn/lugre_friction.hpp"
 #include "boomdyn/model_builder.hpp"
 #include "boomdyn/physics_type.hpp"
-#include "boomdyn/rigid_body.hpp"
-
-#include <Eigen/Eigenvalues>
 
 #include <cmath>
 #include <sstream>
@@ -23,41 +18,14 @@ std::string where(const SourceMark &m)
   return os.str();
 }
 
-Vec2 toVec(const Vec2d &v) { return Vec2(v[0], v[1]); }
-
-// Largest omega^2 of one straight, unstrained element: K v = omega^2 M v.
-double elementOmegaMax2(const ancf::Section &sec, double l)
-{
-  const ancf::Vec8 e = ancf::straightElement(Vec2::Zero(), Vec2(1, 0), l);
-  ancf::Vec8 f;
-  ancf::Mat8 K;
-  ancf::internalForce(sec, l, e, f, &K);
-  const Eigen::GeneralizedSelfAdjointEigenSolver<ancf::Mat8> eig(0.5 * (K + K.transpose()), ancf::massMatrix(sec.rhoA, l),
-                                                                  Eigen::EigenvaluesOnly);
-  return eig.eigenvalues().maxCoeff();
-}
-
 } // namespace
 
 Model::Model(const Scene &scene) : scene_(scene)
 {
-  const Vec2 g = toVec(scene.gravity);
-  for (const BodySpec &b : scene.bodies) {
-    if (b.type == BodySpec::Type::Rigid) {
-      // Mass from the section's mass per length; EA and EI play no part.
-      auto rigid = std::make_unique<RigidBody>(b.name, b.length, b.section.rhoA * b.length, toVec(b.origin), b.angle, nq_);
-      nq_ += rigid->numCoordinates();
-      items_.push_back(std::make_unique<RigidBodyItem>(*rigid, g));
-      bodies_.push_back(std::move(rigid));
-      continue;
-    }
-    const ancf::Section sec{b.section.EA, b.section.EI, b.section.rhoA};
-    auto beam = std::make_unique<AncfBeam>(b.name, b.length, b.elements, sec, toVec(b.origin), b.angle, nq_);
-    nq_ += beam->numCoordinates();
-    auto mass = std::make_shared<const ancf::Mat8>(ancf::massMatrix(sec.rhoA, beam->elementLength()));
-    for (int el = 0; el < beam->numElements(); ++el) items_.push_back(std::make_unique<BeamElementItem>(*beam, el, mass, g));
-    bodies_.push_back(std::move(beam));
-  }
+  // Bodies first, in scene order, each by its body type (physics_type.hpp):
+  // their coordinates come first.
+  BodyBuilder bodies(*this);
+  for (const BodySpec &b : scene.bodies) bodyType(b.type).buildBody(b, bodies);
   // Everything else is built by its physics type (physics_type.hpp), stage
   // by stage over all components, so that the unknowns are numbered
   // [body coordinates | extra coordinates | first-order states | multiplier
@@ -132,18 +100,18 @@ std::vector<Model::Conditioning> Model::iterationConditioning() const
   // (1 - alpha_f) / (1 - alpha_m) between K and the mass term's coefficient.
   const double rho = scene_.dynamic.rho_inf, am = (2 * rho - 1) / (rho + 1), af = rho / (rho + 1);
   const double beta = 0.25 * (1 - am + af) * (1 - am + af), c = beta * (1 - af) / (1 - am), h = scene_.dynamic.dt;
-  for (const auto &b : bodies_) {
-    const auto *beam = dynamic_cast<const AncfBeam *>(b.get());
-    if (!beam) continue;
+  for (const BodySpec &body : scene_.bodies) {
+    const auto elementOmegaMax2 = bodyType(body.type).elementOmegaMax2;
+    if (!elementOmegaMax2) continue; // no elastic modes
     Conditioning k;
-    k.body = beam->name();
-    k.elements = beam->numElements();
-    k.elementLength = beam->elementLength();
-    k.omegaMax = std::sqrt(elementOmegaMax2(beam->section(), k.elementLength));
+    k.body = body.name;
+    k.elements = body.elements;
+    k.elementLength = body.length / body.elements;
+    k.omegaMax = std::sqrt(elementOmegaMax2(body, k.elementLength));
     k.estimate = k.omegaMax * k.omegaMax * h * h * c;
     k.maxStep = std::sqrt(kIllConditioned / (k.omegaMax * k.omegaMax * c));
     // The estimate grows with the element count (like n^4 in bending): bisect.
-    auto estimate = [&](int n) { return elementOmegaMax2(beam->section(), beam->length() / n) * h * h * c; };
+    auto estimate = [&](int n) { return elementOmegaMax2(body, body.length / n) * h * h * c; };
     int lo = 1, hi = k.elements;
     if (estimate(hi) <= kIllConditioned) lo = hi;
     while (hi - lo > 1) {

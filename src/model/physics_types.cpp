@@ -8,6 +8,8 @@
 #include <stdexcept>
 
 #define BOOMDYN_PHYSICS_TYPES(X) \
+  X(ancfBeamType) \
+  X(rigidBodyType) \
   X(clampType) \
   X(pinType) \
   X(angleDriveType) \
@@ -71,6 +73,13 @@ const PhysicsType *findPhysicsType(const std::string &section, const std::string
   for (const PhysicsType &t : physicsTypes())
     if (t.schema.section == section && t.schema.type == type) return &t;
   return nullptr;
+}
+
+const PhysicsType &bodyType(BodySpec::Type kind)
+{
+  for (const PhysicsType *t : physicsTypesOf("bodies"))
+    if (t->bodyKind == kind) return *t;
+  throw std::logic_error("no body type registered for BodySpec::Type " + std::to_string(static_cast<int>(kind)));
 }
 
 } // namespace boomdyn

@@ -7,6 +7,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <set>
 
 using namespace boomdyn;
@@ -35,7 +36,15 @@ void checkSchema(const TypeSchema &s, const std::string &where)
     }
     if (k.kind == ValueKind::Component) EXPECT_FALSE(k.refType.empty()) << where;
     if (k.hasDefault) EXPECT_EQ(k.need, Need::Optional) << where << ": '" << k.key << "' has a default but is required";
+    if (k.need == Need::InForm) {
+      bool listed = false;
+      for (const auto &form : s.forms) listed = listed || std::count(form.begin(), form.end(), k.key) > 0;
+      EXPECT_TRUE(listed) << where << ": '" << k.key << "' is needed in its form but no form lists it";
+    }
   }
+  for (const auto &form : s.forms)
+    for (const std::string &key : form) EXPECT_TRUE(s.find(key)) << where << ": form lists unknown key '" << key << "'";
+  EXPECT_EQ(s.forms.empty(), s.formsText.empty()) << where << ": forms need their text for messages";
   for (const KeyRule &r : s.rules) {
     EXPECT_FALSE(r.reason.empty()) << where;
     if (r.when != KeyRule::When::Always) EXPECT_TRUE(s.find(r.condition)) << where << ": rule on '" << r.condition << "'";
@@ -51,9 +60,15 @@ TEST(PhysicsTypes, EverySchemaIsCompleteAndTypesAreUniquePerSection)
   for (const PhysicsType &t : physicsTypes()) {
     const std::string where = t.schema.section + "/" + t.schema.type;
     EXPECT_TRUE(seen.insert({t.schema.section, t.schema.type}).second) << where << " registered twice";
-    EXPECT_NO_THROW(Scene().components(t.schema.section)) << where << ": unknown section";
     EXPECT_FALSE(t.schema.defaultName.empty()) << where;
-    EXPECT_NE(t.build, nullptr) << where << ": no builder";
+    if (t.schema.section == "bodies") { // built from the typed view BodySpec
+      EXPECT_NE(t.describeBody, nullptr) << where << ": no typed view";
+      EXPECT_NE(t.buildBody, nullptr) << where << ": no builder";
+      EXPECT_EQ(&bodyType(t.bodyKind), &t) << where << ": BodySpec::Type taken twice";
+    } else {
+      EXPECT_NO_THROW(Scene().components(t.schema.section)) << where << ": unknown section";
+      EXPECT_NE(t.build, nullptr) << where << ": no builder";
+    }
     checkSchema(t.schema, where);
     EXPECT_EQ(findPhysicsType(t.schema.section, t.schema.type), &t);
   }

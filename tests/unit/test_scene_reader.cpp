@@ -465,6 +465,34 @@ TEST(SceneReaderErrors, NotFiniteNumbers)
   expectRejected(text, 5, "bodies[0].length", "out of range");
 }
 
+// The section's forms, its products and a rigid body's section, as the body
+// types' schemas (src/bodies/) declare them.
+TEST(SceneReaderErrors, BodySectionFormsAndProducts)
+{
+  const auto withSection = [](const std::string &type, const std::string &section) {
+    std::string text = kMinimal;
+    text.replace(text.find("    section: {EA: 1.0e9, EI: 1.0e6, rhoA: 30}"), 45, "    section: " + section);
+    if (type == "rigid") text.replace(text.find("    elements: 4\n"), 16, "    type: rigid\n");
+    return text;
+  };
+  expectRejected(withSection("ancf_beam", "{E: 1.0e300, A: 1.0e10, I: 1, rho: 1}"), 7, "bodies[0].section.E",
+                 "EA = 1e+300 * 1e+10 is out of range");
+  expectRejected(withSection("ancf_beam", "{E: 1, A: 1.0e-200, I: 1, rho: 1.0e-200}"), 7, "bodies[0].section.rho",
+                 "rhoA = 1e-200 * 1e-200 is out of range");
+  expectRejected(withSection("rigid", "{rhoA: 30, A: 1}"), 7, "bodies[0].section",
+                 "give either rhoA, or rho and A (not a mix of the two forms)");
+  expectRejected(withSection("rigid", "{}"), 7, "bodies[0].section", "needs rhoA, or rho and A");
+  expectRejected(withSection("rigid", "{A: 1}"), 7, "bodies[0].section.rho", "missing required key");
+  expectRejected(withSection("rigid", "{rhoA: 30, I: 1}"), 7, "bodies[0].section.I", "a rigid body has no stiffness");
+  expectRejected(withSection("rigid", "{rhoA: 30, G: 1}"), 7, "bodies[0].section.G", "unknown key");
+
+  const Scene rigid = parseScene(withSection("rigid", "{rho: 7850, A: 0.004}") + "    angle: 90\n", "test.yaml");
+  EXPECT_EQ(rigid.bodies.at(0).type, BodySpec::Type::Rigid);
+  EXPECT_EQ(rigid.bodies.at(0).section.rhoA, 7850 * 0.004);
+  EXPECT_EQ(rigid.bodies.at(0).section.EA, 0.0);
+  EXPECT_DOUBLE_EQ(rigid.bodies.at(0).angle, std::acos(0.0)); // degrees in the file, radians in the spec
+}
+
 TEST(SceneReaderErrors, EmptyAndNonMapDocuments)
 {
   for (const std::string text : {"", "   \n", "# only a comment\n", "~\n"})

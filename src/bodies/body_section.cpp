@@ -1,0 +1,87 @@
+#include "body_section.hpp"
+
+#include <cmath>
+#include <sstream>
+
+namespace boomdyn::body_section {
+
+namespace {
+
+// As the scene reader prints numbers in messages.
+std::string text(double x)
+{
+  std::ostringstream out;
+  out.precision(10);
+  out << x;
+  return out.str();
+}
+
+KeySchema sectionKey(const std::string &name, const std::string &unit, const std::string &help)
+{
+  return key(name, ValueKind::Number, unit, Need::InForm, help).positive();
+}
+
+} // namespace
+
+TypeSchema schema(const std::string &bodyType, bool stiffness)
+{
+  TypeSchema s;
+  s.section = "bodies";
+  s.type = bodyType + ".section";
+  if (stiffness) {
+    s.summary = "exactly one of two forms: the stiffnesses (`EA`, `EI`, `rhoA`), or the material and geometry "
+                "(`E`, `A`, `I`, `rho`; then EA = E·A, EI = E·I, rhoA = rho·A).";
+    // Schema order is the order of checks and of "allowed keys here" in messages.
+    s.keys = {sectionKey("EA", "N", "axial stiffness"), sectionKey("EI", "N m^2", "bending stiffness"),
+              sectionKey("rhoA", "kg/m", "mass per length"), sectionKey("E", "Pa", "Young's modulus"),
+              sectionKey("A", "m^2", "cross-section area"),
+              sectionKey("I", "m^4", "second moment of area about the axis normal to the plane (bending axis)"),
+              sectionKey("rho", "kg/m^3", "density")};
+    s.forms = {{"EA", "EI", "rhoA"}, {"E", "A", "I", "rho"}};
+    s.formsText = "EA, EI, rhoA, or E, A, I, rho";
+    return s;
+  }
+  s.summary = "the mass per length only: `rhoA`, or `rho` and `A` (then rhoA = rho·A).";
+  s.keys = {sectionKey("rhoA", "kg/m", "mass per length"), sectionKey("A", "m^2", "cross-section area"),
+            sectionKey("rho", "kg/m^3", "density")};
+  for (const char *k : {"EA", "EI", "E", "I"})
+    s.rules.push_back(forbid(k, "a rigid body has no stiffness; give its mass per length: rhoA, or rho and A"));
+  s.forms = {{"rhoA"}, {"A", "rho"}};
+  s.formsText = "rhoA, or rho and A";
+  return s;
+}
+
+std::optional<SpecIssue> checkProducts(const ComponentSpec &body, bool stiffness)
+{
+  const ComponentSpec &s = body.map("section");
+  if (!s.has("rho")) return std::nullopt;
+  // Products of large or small inputs can overflow or underflow.
+  const auto bad = [](double a, double b) {
+    const double p = a * b;
+    return !std::isfinite(p) || !(p > 0);
+  };
+  const auto issue = [&](const char *at, const char *what, const char *a, const char *b) {
+    return SpecIssue{std::string("section.") + at,
+                     std::string(what) + " = " + text(s.number(a)) + " * " + text(s.number(b)) + " is out of range"};
+  };
+  if (bad(s.number("rho"), s.number("A"))) return issue("rho", "rhoA", "rho", "A");
+  if (!stiffness) return std::nullopt;
+  if (bad(s.number("E"), s.number("A"))) return issue("E", "EA", "E", "A");
+  if (bad(s.number("E"), s.number("I"))) return issue("E", "EI", "E", "I");
+  return std::nullopt;
+}
+
+SectionSpec fromSpec(const ComponentSpec &s, bool stiffness)
+{
+  SectionSpec out;
+  if (!s.has("rho")) {
+    if (stiffness) out.EA = s.number("EA"), out.EI = s.number("EI");
+    out.rhoA = s.number("rhoA");
+    return out;
+  }
+  out.rhoA = s.number("rho") * s.number("A");
+  if (stiffness) out.EA = s.number("E") * s.number("A"), out.EI = s.number("E") * s.number("I");
+  return out;
+}
+
+} // namespace boomdyn::body_section
