@@ -38,7 +38,8 @@ def file_layer(path: pathlib.Path, root: pathlib.Path) -> str:
             sys.exit(f"check_layers: no layer for folder src/{rel.parts[1]} (add it to FOLDER_LAYERS)")
         # A file that defines a registered type is glue: it builds into the
         # Model (its kernel may live in the same file, e.g. distance.cpp).
-        if layer == "physics" and '#include "boomdyn/physics_type.hpp"' in path.read_text():
+        text = path.read_text()
+        if layer == "physics" and ('"boomdyn/physics_type.hpp"' in text or '"boomdyn/model_builder.hpp"' in text):
             return "model"
         return layer
     return header_layer(path.stem, root)
