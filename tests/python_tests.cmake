@@ -60,3 +60,4 @@ add_test(NAME architecture.layers_self_test
   COMMAND ${python} ${CMAKE_SOURCE_DIR}/tests/architecture/check_layers.py --self-test)
 set_tests_properties(architecture.layers architecture.layers_self_test PROPERTIES LABELS architecture)
 boomdyn_script_test(postprocess.output_channels postprocess/test_output_channels.py postprocess)
+boomdyn_script_test(regression.help regression/test_help.py regression)

@@ -8,6 +8,7 @@
 #pragma once
 
 #include "boomdyn/model.hpp"
+#include "boomdyn/petsc_handle.hpp"
 #include "boomdyn/work_item.hpp"
 
 #include <petscmat.h>
@@ -20,7 +21,6 @@ namespace boomdyn {
 class Assembler {
 public:
   explicit Assembler(const Model &model) : model_(model) {}
-  ~Assembler();
   Assembler(const Assembler &) = delete;
   Assembler &operator=(const Assembler &) = delete;
 
@@ -62,8 +62,8 @@ private:
   const Model &model_;
   MPI_Comm comm_ = MPI_COMM_NULL;
   int patternVersion_ = 0;
-  Vec xTemplate_ = nullptr, xLocal_ = nullptr, fLocal_ = nullptr;
-  VecScatter scatter_ = nullptr;
+  PetscHandle<Vec> xTemplate_, xLocal_, fLocal_;
+  PetscHandle<VecScatter> scatter_;
   std::vector<int> itemRank_;               // rank of every model item (empty: owner of its first unknown)
   std::vector<const WorkItem *> items_;
   std::vector<int> itemStart_, itemCoords_; // offsets into itemLocal_; coordinate counts

@@ -34,6 +34,11 @@ struct JacobianReuse {
   PetscInt maxAge = 0;
 };
 
+// The Newton solver's own options (-boom_jacobian_*, -boom_schur_dd) in one
+// PetscOptionsBegin/End block with help text, checked; called by setUp(),
+// and by the program for -help without a scene, so -help lists them too.
+PetscErrorCode readNewtonOptions(MPI_Comm comm, const char *prefix, JacobianReuse *reuse, PetscBool *schur);
+
 struct NewtonStatistics {
   PetscInt solves = 0, iterations = 0, jacobians = 0, retriesWithFreshJacobian = 0;
 };

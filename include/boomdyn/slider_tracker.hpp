@@ -7,6 +7,7 @@
 #pragma once
 
 #include "boomdyn/assembler.hpp"
+#include "boomdyn/petsc_handle.hpp"
 
 #include <string>
 #include <vector>
@@ -24,7 +25,6 @@ std::string contactsNearTrackEnds(const Model &model, const std::vector<double> 
 class SliderTracker {
 public:
   explicit SliderTracker(Assembler &assembler) : assembler_(assembler) {}
-  ~SliderTracker();
   SliderTracker(const SliderTracker &) = delete;
   SliderTracker &operator=(const SliderTracker &) = delete;
 
@@ -42,8 +42,8 @@ public:
 
 private:
   Assembler &assembler_;
-  VecScatter scatter_ = nullptr;
-  Vec slacks_ = nullptr; // the watched values of all hooks, in hook order
+  PetscHandle<VecScatter> scatter_;
+  PetscHandle<Vec> slacks_; // the watched values of all hooks, in hook order
 };
 
 } // namespace boomdyn

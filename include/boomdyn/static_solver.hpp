@@ -5,6 +5,7 @@
 #pragma once
 
 #include "boomdyn/newton_solver.hpp"
+#include "boomdyn/petsc_handle.hpp"
 
 #include <functional>
 #include <string>
@@ -19,7 +20,6 @@ struct LoadStepInfo {
 class StaticSolver {
 public:
   explicit StaticSolver(Assembler &assembler) : assembler_(assembler) {}
-  ~StaticSolver();
   StaticSolver(const StaticSolver &) = delete;
   StaticSolver &operator=(const StaticSolver &) = delete;
 
@@ -37,7 +37,7 @@ public:
 private:
   Assembler &assembler_;
   NewtonSolver newton_;
-  Vec lambda_ = nullptr, backup_ = nullptr;
+  PetscHandle<Vec> lambda_, backup_;
   double sigma_ = 1, structureSize_ = 0;
   std::string failure_;
 };

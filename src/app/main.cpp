@@ -10,6 +10,7 @@
 #include "run.hpp"
 #include "signals.hpp"
 
+#include "boomdyn/newton_solver.hpp"
 #include "boomdyn/scene_reader.hpp"
 
 #include <slepcsys.h>
@@ -122,7 +123,12 @@ PetscErrorCode runProgram(int argc, char **argv, boomdyn::AppOptions *opts, std:
   if (!opts->scenePath.empty())
     PetscCallCXX(scene = std::make_unique<boomdyn::Scene>(boomdyn::readSceneFile(opts->scenePath)));
   PetscCall(boomdyn::readAppOptions(scene.get(), opts));
-  if (!scene && opts->help) PetscFunctionReturn(0);
+  if (!scene && opts->help) { // the solvers' options too, with their defaults
+    boomdyn::JacobianReuse reuse;
+    PetscBool schur = PETSC_FALSE;
+    PetscCall(boomdyn::readNewtonOptions(PETSC_COMM_WORLD, nullptr, &reuse, &schur));
+    PetscFunctionReturn(0);
+  }
   PetscCheck(scene, PETSC_COMM_WORLD, PETSC_ERR_USER_INPUT,
              "usage: boomdyn SCENE.yaml [-o OUT.h5] [-boom_overwrite] [-boom_quiet] [PETSc options]; see README.md "
              "(boomdyn -help lists every option)");

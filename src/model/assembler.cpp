@@ -8,21 +8,12 @@
 
 namespace boomdyn {
 
-Assembler::~Assembler()
-{
-  // Destructors cannot propagate PETSc errors; destruction of valid objects does not fail.
-  if (scatter_) (void)VecScatterDestroy(&scatter_);
-  if (xLocal_) (void)VecDestroy(&xLocal_);
-  if (fLocal_) (void)VecDestroy(&fLocal_);
-  if (xTemplate_) (void)VecDestroy(&xTemplate_);
-}
-
 PetscErrorCode Assembler::setUp(MPI_Comm comm)
 {
   PetscFunctionBeginUser;
   comm_ = comm;
   PetscCall(registerLogEvents());
-  PetscCall(VecCreate(comm, &xTemplate_));
+  PetscCall(VecCreate(comm, xTemplate_.address()));
   PetscCall(VecSetSizes(xTemplate_, PETSC_DECIDE, model_.size()));
   PetscCall(VecSetFromOptions(xTemplate_));
   PetscCall(VecSetUp(xTemplate_));
@@ -49,9 +40,9 @@ PetscErrorCode Assembler::rebuildPattern()
 {
   PetscFunctionBeginUser;
   // Sliding joints moved to other elements: new dof lists, owners, scatter and COO pattern.
-  PetscCall(VecScatterDestroy(&scatter_));
-  PetscCall(VecDestroy(&xLocal_));
-  PetscCall(VecDestroy(&fLocal_));
+  scatter_.reset();
+  xLocal_.reset();
+  fLocal_.reset();
   PetscCall(buildPattern());
   ++patternVersion_;
   PetscFunctionReturn(0);
@@ -115,9 +106,9 @@ PetscErrorCode Assembler::buildPattern()
   const PetscInt nloc = static_cast<PetscInt>(needed.size());
   IS is;
   PetscCall(ISCreateGeneral(PETSC_COMM_SELF, nloc, needed.data(), PETSC_COPY_VALUES, &is));
-  PetscCall(VecCreateSeq(PETSC_COMM_SELF, nloc, &xLocal_));
-  PetscCall(VecDuplicate(xLocal_, &fLocal_));
-  PetscCall(VecScatterCreate(xTemplate_, is, xLocal_, nullptr, &scatter_));
+  PetscCall(VecCreateSeq(PETSC_COMM_SELF, nloc, xLocal_.address()));
+  PetscCall(VecDuplicate(xLocal_, fLocal_.address()));
+  PetscCall(VecScatterCreate(xTemplate_, is, xLocal_, nullptr, scatter_.address()));
   PetscCall(ISDestroy(&is));
   qc_.assign(nloc, 0.0), vc_.assign(nloc, 0.0), ac_.assign(nloc, 0.0);
   firstOrder_.assign(nloc, 0);

@@ -7,12 +7,6 @@
 
 namespace boomdyn {
 
-SliderTracker::~SliderTracker()
-{
-  if (scatter_) (void)VecScatterDestroy(&scatter_);
-  if (slacks_) (void)VecDestroy(&slacks_);
-}
-
 PetscErrorCode SliderTracker::setUp(Vec layout)
 {
   PetscFunctionBeginUser;
@@ -21,8 +15,8 @@ PetscErrorCode SliderTracker::setUp(Vec layout)
   // Every rank receives every watched value, so that all ranks take the same decisions.
   IS is;
   PetscCall(ISCreateGeneral(PETSC_COMM_SELF, static_cast<PetscInt>(idx.size()), idx.data(), PETSC_COPY_VALUES, &is));
-  PetscCall(VecCreateSeq(PETSC_COMM_SELF, static_cast<PetscInt>(idx.size()), &slacks_));
-  PetscCall(VecScatterCreate(layout, is, slacks_, nullptr, &scatter_));
+  PetscCall(VecCreateSeq(PETSC_COMM_SELF, static_cast<PetscInt>(idx.size()), slacks_.address()));
+  PetscCall(VecScatterCreate(layout, is, slacks_, nullptr, scatter_.address()));
   PetscCall(ISDestroy(&is));
   PetscFunctionReturn(0);
 }

@@ -37,29 +37,36 @@ PetscErrorCode NewtonSolver::setUp(Assembler &assembler, const char *prefix, Pet
   PetscCall(SNESGetKSP(snes_, &ksp));
   PetscCall(useDirectSolver(ksp));
 
-  PetscOptionsBegin(assembler.comm(), prefix, "Newton iteration matrix reuse", "boomdyn");
-  PetscBool enabled = reuse_.enabled ? PETSC_TRUE : PETSC_FALSE;
+  PetscBool schur = PETSC_FALSE;
+  PetscCall(readNewtonOptions(assembler.comm(), prefix, &reuse_, &schur));
+  if (schur) PetscCall(useSchurComplementSolver(ksp));
+  if (reuse_.enabled) PetscCall(SNESSetConvergenceTest(snes_, convergenceTest, this, nullptr));
+  PetscCall(SNESSetFromOptions(snes_));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode readNewtonOptions(MPI_Comm comm, const char *prefix, JacobianReuse *reuse, PetscBool *schur)
+{
+  PetscFunctionBeginUser;
+  PetscOptionsBegin(comm, prefix, "Newton iteration matrix reuse", "boomdyn");
+  PetscBool enabled = reuse->enabled ? PETSC_TRUE : PETSC_FALSE;
   PetscCall(PetscOptionsBool("-boom_jacobian_reuse",
                              "Keep the factored Jacobian across iterations and steps (modified Newton)", "", enabled,
                              &enabled, nullptr));
-  reuse_.enabled = enabled;
+  reuse->enabled = enabled;
   PetscCall(PetscOptionsReal("-boom_jacobian_refresh_ratio",
-                             "Rebuild the Jacobian when |F_k|/|F_k-1| exceeds this", "", reuse_.refreshRatio,
-                             &reuse_.refreshRatio, nullptr));
+                             "Rebuild the Jacobian when |F_k|/|F_k-1| exceeds this", "", reuse->refreshRatio,
+                             &reuse->refreshRatio, nullptr));
   PetscCall(PetscOptionsInt("-boom_jacobian_max_age", "Rebuild the Jacobian after this many solves (0: never)", "",
-                            reuse_.maxAge, &reuse_.maxAge, nullptr));
-  PetscBool schur = PETSC_FALSE;
+                            reuse->maxAge, &reuse->maxAge, nullptr));
   PetscCall(PetscOptionsBool("-boom_schur_dd",
                              "Direct solves by condensation onto the rank interfaces (KLU per rank) instead of MUMPS", "",
-                             schur, &schur, nullptr));
-  if (schur) PetscCall(useSchurComplementSolver(ksp));
+                             *schur, schur, nullptr));
   PetscOptionsEnd();
-  PetscCheck(reuse_.refreshRatio > 0 && reuse_.refreshRatio < 1, assembler.comm(), PETSC_ERR_USER_INPUT,
-             "-boom_jacobian_refresh_ratio must lie in (0, 1), got %g", (double)reuse_.refreshRatio);
-  PetscCheck(reuse_.maxAge >= 0, assembler.comm(), PETSC_ERR_USER_INPUT,
-             "-boom_jacobian_max_age must be >= 0, got %" PetscInt_FMT, reuse_.maxAge);
-  if (reuse_.enabled) PetscCall(SNESSetConvergenceTest(snes_, convergenceTest, this, nullptr));
-  PetscCall(SNESSetFromOptions(snes_));
+  PetscCheck(reuse->refreshRatio > 0 && reuse->refreshRatio < 1, comm, PETSC_ERR_USER_INPUT,
+             "-boom_jacobian_refresh_ratio must lie in (0, 1), got %g", (double)reuse->refreshRatio);
+  PetscCheck(reuse->maxAge >= 0, comm, PETSC_ERR_USER_INPUT,
+             "-boom_jacobian_max_age must be >= 0, got %" PetscInt_FMT, reuse->maxAge);
   PetscFunctionReturn(0);
 }
 

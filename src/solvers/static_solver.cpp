@@ -8,18 +8,12 @@
 
 namespace boomdyn {
 
-StaticSolver::~StaticSolver()
-{
-  if (lambda_) (void)VecDestroy(&lambda_);
-  if (backup_) (void)VecDestroy(&backup_);
-}
-
 PetscErrorCode StaticSolver::setUp()
 {
   PetscFunctionBeginUser;
   for (const auto &b : assembler_.model().bodies()) structureSize_ = std::max(structureSize_, b->length());
-  PetscCall(assembler_.createVector(&lambda_));
-  PetscCall(assembler_.createVector(&backup_));
+  PetscCall(assembler_.createVector(lambda_.address()));
+  PetscCall(assembler_.createVector(backup_.address()));
   PetscCall(newton_.setUp(assembler_, "static_", 50));
   PetscFunctionReturn(0);
 }
