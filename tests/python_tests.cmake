@@ -61,3 +61,4 @@ add_test(NAME architecture.layers_self_test
 set_tests_properties(architecture.layers architecture.layers_self_test PROPERTIES LABELS architecture)
 boomdyn_script_test(postprocess.output_channels postprocess/test_output_channels.py postprocess)
 boomdyn_script_test(regression.help regression/test_help.py regression)
+boomdyn_script_test(regression.option_values regression/test_option_values.py regression)

@@ -1,5 +1,9 @@
 #include "options.hpp"
 
+#include <cerrno>
+#include <cmath>
+#include <cstdlib>
+
 #include <unistd.h>
 
 #include <algorithm>
@@ -60,8 +64,28 @@ PetscErrorCode optionNumber(PetscOptionItems *PetscOptionsObject, const char *na
 {
   PetscFunctionBeginUser;
   appOptionNames().push_back(name);
-  if constexpr (std::is_same_v<T, PetscInt>) PetscCall(PetscOptionsInt(name, help, "README.md", *value, value, set));
-  else PetscCall(PetscOptionsReal(name, help, "README.md", *value, value, set));
+  PetscBool given = PETSC_FALSE, has;
+  char text[64] = "";
+  PetscCall(PetscOptionsGetString(nullptr, nullptr, name, text, sizeof text, &has));
+  if constexpr (std::is_same_v<T, PetscInt>) {
+    PetscCall(PetscOptionsInt(name, help, "README.md", *value, value, &given));
+    // PETSc wraps integers beyond PetscInt's range (4294967297 elements would
+    // run with 1): read the text again and refuse what does not fit.
+    if (given && has) {
+      errno = 0;
+      char *end = nullptr;
+      const long long exact = std::strtoll(text, &end, 10);
+      PetscCheck(errno == 0 && end && *end == '\0' && exact == static_cast<long long>(*value), PETSC_COMM_WORLD,
+                 PETSC_ERR_USER_INPUT, "%s %s: not an integer in [%" PetscInt_FMT ", %" PetscInt_FMT "]", name, text,
+                 PETSC_MIN_INT, PETSC_MAX_INT);
+    }
+  } else {
+    PetscCall(PetscOptionsReal(name, help, "README.md", *value, value, &given));
+    // inf and nan parse as numbers; no boomdyn quantity may be either.
+    PetscCheck(!given || std::isfinite(*value), PETSC_COMM_WORLD, PETSC_ERR_USER_INPUT,
+               "%s %s: must be a finite number", name, text);
+  }
+  if (set) *set = given;
   PetscFunctionReturn(0);
 }
 
