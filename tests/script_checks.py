@@ -12,6 +12,15 @@ def report(checks):
     return 1 if failed else 0
 
 
+def checker(results):
+    """A check(ok, what) for a script test: appends (passed, what) to results
+    and prints the 'ok'/'FAIL' line as it goes."""
+    def check(ok, what):
+        results.append((bool(ok), what))
+        print(("ok   " if ok else "FAIL ") + what)
+    return check
+
+
 def finish(main, results):
     """Runs main(), which appends (passed, what) to results (and prints them as
     it goes); a crash counts as a failed check, with its trace. Prints the

@@ -52,6 +52,7 @@ private:
   PetscErrorCode writeStepRow(const RunState &s);
   PetscErrorCode writeJoints(const RunState &s);
   PetscErrorCode writeOutputs(const RunState &s); // static runs: output channels only
+  void fillOutputs();
 
   Simulation &sim_;
   ResultsWriter writer_;

@@ -6,6 +6,7 @@
 // Nothing here knows YAML, so physics types do not depend on io.
 #pragma once
 
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -87,6 +88,16 @@ private:
     return k;
   }
 };
+
+// A number as scene messages print it (10 significant digits), for limits
+// and values in the reader's and the types' messages.
+inline std::string numberText(double x)
+{
+  std::ostringstream out;
+  out.precision(10);
+  out << x;
+  return out.str();
+}
 
 inline KeySchema key(std::string name, ValueKind kind, std::string unit, Need need, std::string help)
 {

@@ -17,14 +17,8 @@ constexpr int kMaxElements = 10000000;
 
 void describeAncfBeam(const ComponentSpec &spec, BodySpec &b)
 {
-  b.name = spec.name;
-  b.type = BodySpec::Type::AncfBeam;
-  b.mark = spec.mark;
-  b.length = spec.number("length");
+  body_section::describeBody(spec, BodySpec::Type::AncfBeam, b);
   b.elements = spec.integer("elements");
-  if (spec.has("origin")) b.origin = spec.vec2("origin");
-  b.angle = spec.number("angle");
-  b.section = body_section::fromSpec(spec.map("section"), true);
 }
 
 std::optional<SpecIssue> checkAncfBeam(const ComponentSpec &spec, const Scene &)

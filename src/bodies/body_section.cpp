@@ -7,15 +7,6 @@ namespace boomdyn::body_section {
 
 namespace {
 
-// As the scene reader prints numbers in messages.
-std::string text(double x)
-{
-  std::ostringstream out;
-  out.precision(10);
-  out << x;
-  return out.str();
-}
-
 KeySchema sectionKey(const std::string &name, const std::string &unit, const std::string &help)
 {
   return key(name, ValueKind::Number, unit, Need::InForm, help).positive();
@@ -62,7 +53,7 @@ std::optional<SpecIssue> checkProducts(const ComponentSpec &body, bool stiffness
   };
   const auto issue = [&](const char *at, const char *what, const char *a, const char *b) {
     return SpecIssue{std::string("section.") + at,
-                     std::string(what) + " = " + text(s.number(a)) + " * " + text(s.number(b)) + " is out of range"};
+                     std::string(what) + " = " + numberText(s.number(a)) + " * " + numberText(s.number(b)) + " is out of range"};
   };
   if (bad(s.number("rho"), s.number("A"))) return issue("rho", "rhoA", "rho", "A");
   if (!stiffness) return std::nullopt;
@@ -82,6 +73,17 @@ SectionSpec fromSpec(const ComponentSpec &s, bool stiffness)
   out.rhoA = s.number("rho") * s.number("A");
   if (stiffness) out.EA = s.number("E") * s.number("A"), out.EI = s.number("E") * s.number("I");
   return out;
+}
+
+void describeBody(const ComponentSpec &spec, BodySpec::Type type, BodySpec &b)
+{
+  b.name = spec.name;
+  b.type = type;
+  b.mark = spec.mark;
+  b.length = spec.number("length");
+  if (spec.has("origin")) b.origin = spec.vec2("origin");
+  b.angle = spec.number("angle");
+  b.section = fromSpec(spec.map("section"), type == BodySpec::Type::AncfBeam);
 }
 
 } // namespace boomdyn::body_section

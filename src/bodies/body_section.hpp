@@ -19,4 +19,8 @@ std::optional<SpecIssue> checkProducts(const ComponentSpec &body, bool stiffness
 // The section in the stiffness form, whichever form the scene used.
 SectionSpec fromSpec(const ComponentSpec &section, bool stiffness);
 
+// The keys every body type has (name, length, origin, angle, section) into
+// the typed view; the caller sets what is its own (elements).
+void describeBody(const ComponentSpec &spec, BodySpec::Type type, BodySpec &body);
+
 } // namespace boomdyn::body_section

@@ -11,14 +11,8 @@ namespace {
 
 void describeRigidBody(const ComponentSpec &spec, BodySpec &b)
 {
-  b.name = spec.name;
-  b.type = BodySpec::Type::Rigid;
-  b.mark = spec.mark;
-  b.length = spec.number("length");
+  body_section::describeBody(spec, BodySpec::Type::Rigid, b);
   b.elements = 1; // no mesh
-  if (spec.has("origin")) b.origin = spec.vec2("origin");
-  b.angle = spec.number("angle");
-  b.section = body_section::fromSpec(spec.map("section"), false);
 }
 
 std::optional<SpecIssue> checkRigidBody(const ComponentSpec &spec, const Scene &)

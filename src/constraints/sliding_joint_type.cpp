@@ -14,14 +14,6 @@ namespace boomdyn {
 
 namespace {
 
-std::string fmt(double x)
-{
-  std::ostringstream out;
-  out.precision(10);
-  out << x;
-  return out.str();
-}
-
 // LuGre parameters (docs/model.md §3); the defaults are FrictionSpec's.
 const TypeSchema &frictionSchema()
 {
@@ -59,7 +51,7 @@ std::optional<SpecIssue> checkSlidingJoint(const ComponentSpec &spec, const Scen
   if (!spec.has("friction")) return std::nullopt;
   const ComponentSpec &f = spec.map("friction");
   if (f.number("mu_c") > f.number("mu_s"))
-    return SpecIssue{"friction.mu_c", "must be <= mu_s (" + fmt(f.number("mu_s")) + "): kinetic friction above static"};
+    return SpecIssue{"friction.mu_c", "must be <= mu_s (" + numberText(f.number("mu_s")) + "): kinetic friction above static"};
   return std::nullopt;
 }
 

@@ -16,13 +16,6 @@ std::string join(const std::vector<std::string> &items)
   return out;
 }
 
-std::string fmt(double x)
-{
-  std::ostringstream out;
-  out.precision(10);
-  out << x;
-  return out.str();
-}
 
 // Edit distance, for "did you mean" hints on misspelt keys.
 std::size_t editDistance(const std::string &a, const std::string &b)
@@ -299,7 +292,7 @@ TimeFunction CheckedYaml::timeFunction(const Field &f) const
     const Field t1_field = m.require("t1");
     const double t1 = number(t1_field);
     if (!(t1 > t0))
-      report_.fail(t1_field, "must be > t0 (got t0 = " + fmt(t0) + ", t1 = " + fmt(t1) + ")");
+      report_.fail(t1_field, "must be > t0 (got t0 = " + numberText(t0) + ", t1 = " + numberText(t1) + ")");
     const double from = number(m.require("from"));
     const double to = number(m.require("to"));
     return type == 1 ? TimeFunction::ramp(t0, t1, from, to) : TimeFunction::smoothStep(t0, t1, from, to);
@@ -318,7 +311,7 @@ TimeFunction CheckedYaml::timeFunction(const Field &f) const
     for (std::size_t k = 1; k < t.size(); ++k)
       if (!(t[k] > t[k - 1]))
         report_.fail(items[k], "times must be strictly increasing (t[" + std::to_string(k) + "] = " +
-                                   fmt(t[k]) + " after " + fmt(t[k - 1]) + ")");
+                                   numberText(t[k]) + " after " + numberText(t[k - 1]) + ")");
     return TimeFunction::table(t, v);
   }
   default: {
@@ -348,7 +341,7 @@ const BodySpec &CheckedYaml::body(const Field &f, const Scene &scene) const
 // A material coordinate: start, end or s in [0, length] in metres.
 double CheckedYaml::materialCoordinate(const Field &f, const BodySpec &b) const
 {
-  const std::string expected = "start, end or a number in [0, " + fmt(b.length) + "] (the length of body '" +
+  const std::string expected = "start, end or a number in [0, " + numberText(b.length) + "] (the length of body '" +
                                b.name + "', m)";
   if (f.node.IsScalar() && f.node.Scalar() == "start")
     return 0.0;

@@ -10,6 +10,7 @@
 // without our key path. Scalars are converted by hand instead.
 #pragma once
 
+#include "boomdyn/schema.hpp"
 #include "boomdyn/scene.hpp"
 #include "boomdyn/scene_reader.hpp"
 
@@ -30,7 +31,6 @@ constexpr int kMaxNewton = 1000;
 const char *const kTopLevel = "(top level)"; // path shown for the document itself
 
 std::string join(const std::vector<std::string> &items);
-std::string fmt(double x);
 // Edit distance, for "did you mean" hints on misspelt keys.
 std::size_t editDistance(const std::string &a, const std::string &b);
 // A short description of what a node holds, for "expected X, got Y".

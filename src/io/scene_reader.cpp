@@ -119,11 +119,11 @@ DynamicSpec SceneParser::parseDynamic(const Field &f) const
   const Field dt_field = m.require("dt");
   d.dt = positive(dt_field);
   if (d.dt > d.t_end)
-    report_.fail(dt_field, "must be <= t_end (" + fmt(d.t_end) + "), got " + dt_field.node.Scalar());
+    report_.fail(dt_field, "must be <= t_end (" + numberText(d.t_end) + "), got " + dt_field.node.Scalar());
   if (const auto dt_min = m.get("dt_min")) {
     d.dt_min = positive(*dt_min);
     if (d.dt_min > d.dt)
-      report_.fail(*dt_min, "must be <= dt (" + fmt(d.dt) + "), got " + dt_min->node.Scalar());
+      report_.fail(*dt_min, "must be <= dt (" + numberText(d.dt) + "), got " + dt_min->node.Scalar());
   } else {
     d.dt_min = std::min(d.dt_min, d.dt); // the default must not exceed a small dt
   }

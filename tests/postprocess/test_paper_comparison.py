@@ -29,9 +29,7 @@ COARSE = ["-boom_overwrite", "-boom_quiet", "-boom_elements", "4"]
 results = []
 
 
-def check(ok, what):
-    results.append((bool(ok), what))
-    print(("ok   " if ok else "FAIL ") + what)
+check = script_checks.checker(results)
 
 
 def run(scene, t_end, extra=()):

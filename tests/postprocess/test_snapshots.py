@@ -28,9 +28,7 @@ OPTIONS = ["-boom_overwrite", "-boom_quiet", "-ts_max_time", "0.3", "-boom_eleme
 results = []
 
 
-def check(ok, what):
-    results.append((bool(ok), what))
-    print(("ok   " if ok else "FAIL ") + what)
+check = script_checks.checker(results)
 
 
 def run(scene, name):

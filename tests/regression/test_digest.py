@@ -16,9 +16,7 @@ import script_checks  # noqa: E402
 results = []
 
 
-def check(ok, what):
-    results.append((bool(ok), what))
-    print(("ok   " if ok else "FAIL ") + what)
+check = script_checks.checker(results)
 
 
 STORED = [("run.steps.count", 1000), ("state.q.norm", 6.0),

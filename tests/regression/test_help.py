@@ -15,9 +15,7 @@ import script_checks  # noqa: E402
 results = []
 
 
-def check(ok, what):
-    results.append((bool(ok), what))
-    print(("ok   " if ok else "FAIL ") + what)
+check = script_checks.checker(results)
 
 
 def main():

@@ -18,9 +18,7 @@ results = []
 scene = os.path.join(source, "inputs", "cantilever_dynamic.yaml")
 
 
-def check(ok, what):
-    results.append((bool(ok), what))
-    print(("ok   " if ok else "FAIL ") + what)
+check = script_checks.checker(results)
 
 
 def run(name, args):

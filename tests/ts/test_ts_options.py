@@ -28,9 +28,7 @@ two_beams = os.path.join(source, "inputs", "two_beams_pinned.yaml")  # dt = 1 ms
 results = []
 
 
-def check(ok, what):
-    results.append((bool(ok), what))
-    print(("ok   " if ok else "FAIL ") + what)
+check = script_checks.checker(results)
 
 
 def run(scene, name, args):
