@@ -49,8 +49,12 @@ public:
   double scalar(const std::string &name) const override;
   const std::vector<double> &array(const std::string &name) const override;
   const std::string &sceneText() const { return sceneText_; }
+  bool hasScalar(const std::string &name) const { return scalars_.count(name) > 0; }
 
 private:
+  std::string firstNonFinite(const std::vector<std::string> &scalarNames,
+                             const std::vector<double> &scalarValues) const;
+
   MPI_Comm comm_;
   std::string path_, sceneText_;
   std::map<std::string, double> scalars_;

@@ -22,8 +22,10 @@ namespace boomdyn {
 
 class Hdf5File {
 public:
-  // Creates `path`. An existing file is truncated only when `overwrite` is
-  // true; otherwise std::runtime_error names the path and the option to use.
+  // Creates `path`. An existing file is replaced only when `overwrite` is
+  // true (never truncated in place: a new file under a temporary name is
+  // renamed over it; a file that another process holds locked is refused);
+  // otherwise std::runtime_error names the path and the option to use.
   Hdf5File(const std::string &path, bool overwrite);
   ~Hdf5File(); // closes; errors at this point are swallowed (use close())
   Hdf5File(Hdf5File &&) noexcept;
@@ -33,6 +35,9 @@ public:
 
   const std::string &path() const;
   bool isOpen() const;
+  // False when the file at path() is no longer the one created here (removed,
+  // or replaced by another run): what is written goes nowhere.
+  bool stillAtPath() const;
   // True if a group or dataset exists at `objectPath` ("/" always exists).
   bool exists(const std::string &objectPath) const;
 

@@ -53,7 +53,8 @@ public:
   PetscErrorCode setUp();
   void addMonitor(std::unique_ptr<Monitor> monitor) { monitors_.push_back(std::move(monitor)); }
   // Collective: the whole analysis. stop, if given, is asked after every
-  // time step and must answer alike on every rank (SIGINT/SIGTERM). A run
+  // time step, load increment and before an eigen-analysis, and must answer
+  // alike on every rank (SIGINT/SIGTERM/SIGHUP/SIGPIPE). A run
   // that fails or is stopped returns 0 and says so in outcome().
   PetscErrorCode run(const std::function<bool()> &stop = {});
   // Collective: everything needed to continue this run bitwise (one rank):
@@ -76,7 +77,7 @@ public:
 
 private:
   PetscErrorCode runDynamic(const std::function<bool()> &stop);
-  PetscErrorCode runStatic();
+  PetscErrorCode runStatic(const std::function<bool()> &stop);
   PetscErrorCode restore(RunState *state);
   PetscErrorCode dynamicState(RunState *state);
   PetscErrorCode afterStep(const RunState &state, std::string *failure);

@@ -15,6 +15,7 @@ namespace boomdyn {
 struct LoadStepInfo {
   double loadFactor;
   PetscInt iterations;
+  bool *stop = nullptr; // onStep sets *stop: the solve ends after this increment (an interrupt)
 };
 
 class StaticSolver {

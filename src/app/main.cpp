@@ -21,6 +21,7 @@
 #include <memory>
 #include <string>
 #include <thread>
+#include <vector>
 
 static const char help[] = "boomdyn SCENE.yaml [-o OUT.h5] [-boom_overwrite] [-boom_quiet] [boomdyn and PETSc options]\n"
                            "(boomdyn -help lists every option with its default; README.md describes them)\n";
@@ -47,7 +48,7 @@ PetscErrorCode keepFirstError(MPI_Comm, int line, const char *function, const ch
     // which cross into PETSc code in src/app and src/simulation) say all
     // there is to say; other errors name where they arose.
     const std::string where = file ? file : "?";
-    const bool userError = n == PETSC_ERR_USER_INPUT || n == PETSC_ERR_NOT_CONVERGED ||
+    const bool userError = n == PETSC_ERR_USER_INPUT || n == PETSC_ERR_NOT_CONVERGED || n == PETSC_ERR_FILE_WRITE ||
                            where.find("src/app/") != std::string::npos || where.find("src/simulation/") != std::string::npos;
     if (!userError)
       firstPetscError += " (in " + std::string(function ? function : "?") + ", " + where + ":" + std::to_string(line) + ")";
@@ -119,6 +120,9 @@ PetscErrorCode runProgram(int argc, char **argv, boomdyn::AppOptions *opts, std:
   std::unique_ptr<boomdyn::Scene> scene;
   PetscFunctionBeginUser;
   PetscCall(boomdyn::sceneArgument(argc, argv, &opts->scenePath));
+  PetscCall(boomdyn::rejectStrayArguments(argc, argv));
+  std::vector<std::string> given;
+  PetscCall(boomdyn::userOptionNames(&given));
   // Scene errors (file, line, key) are reported by the reader by exception.
   if (!opts->scenePath.empty())
     PetscCallCXX(scene = std::make_unique<boomdyn::Scene>(boomdyn::readSceneFile(opts->scenePath)));
@@ -133,14 +137,21 @@ PetscErrorCode runProgram(int argc, char **argv, boomdyn::AppOptions *opts, std:
              "usage: boomdyn SCENE.yaml [-o OUT.h5] [-boom_overwrite] [-boom_quiet] [PETSc options]; see README.md "
              "(boomdyn -help lists every option)");
   PetscCall(boomdyn::rejectUnknownOptions(scene.get()));
+  PetscCall(boomdyn::checkRunFiles(*opts, scene->analysis == boomdyn::Scene::Analysis::Dynamic));
   if (opts->partitionReport) PetscFunctionReturn(boomdyn::reportPartitions(*scene, opts->partitionParts));
   boomdyn::installInterruptHandlers();
   boomdyn::RunOutcome outcome;
   PetscCall(boomdyn::runScene(*scene, *opts, argc, argv, &outcome));
+  // Options nobody read (-ksp_typo, -modal_eps_nev on a dynamic run) were ignored: say so.
+  std::string unused;
+  PetscCall(boomdyn::reportUnusedOptions(given, &unused));
+  if (!unused.empty())
+    PetscCall(PetscPrintf(PETSC_COMM_WORLD, "boomdyn: warning: %s: options not used by this run: %s\n",
+                          scene->file.c_str(), unused.c_str()));
   if (outcome.interrupted()) {
     *line = "boomdyn: run interrupted at t = " + std::to_string(outcome.endTime) + " s by signal " +
             std::to_string(boomdyn::interruptSignal()) + "; results so far in " + opts->outputPath +
-            ", continue with -boom_restart " + opts->checkpointPath;
+            (outcome.dynamic ? ", continue with -boom_restart " + opts->checkpointPath : std::string());
     *code = 128 + boomdyn::interruptSignal();
   } else if (!outcome.completed()) {
     *line = "boomdyn: error: " + scene->file + ": run " + outcome.status + " (results so far in " + opts->outputPath + ")";
@@ -153,6 +164,10 @@ PetscErrorCode runProgram(int argc, char **argv, boomdyn::AppOptions *opts, std:
 
 int main(int argc, char **argv)
 {
+  if (const std::string missing = boomdyn::unreadableOptionsFile(argc, argv); !missing.empty()) {
+    std::printf("boomdyn: error: %s\n", missing.c_str());
+    return 1;
+  }
   PetscCall(PetscInitialize(&argc, &argv, nullptr, help));
   PetscCall(PetscPushErrorHandler(keepFirstError, nullptr));
   boomdyn::AppOptions opts;

@@ -1,5 +1,7 @@
 #include "options.hpp"
 
+#include "boomdyn/schema.hpp"
+
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
@@ -7,6 +9,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cstring>
 #include <sstream>
 #include <string>
@@ -23,6 +26,10 @@ const char *const libraryOptions[] = {"-boom_jacobian_reuse", "-boom_jacobian_re
                                       "-boom_schur_dd"};
 
 // Options read in this file (filled by the Option* helpers as they go).
+// More steps than a run can take (1e9 steps of the smallest model take
+// about a day).
+constexpr double kMaxSteps = 1e9;
+
 std::vector<std::string> &appOptionNames()
 {
   static std::vector<std::string> names;
@@ -43,6 +50,7 @@ PetscErrorCode optionString(PetscOptionItems *PetscOptionsObject, const char *na
   PetscFunctionBeginUser;
   appOptionNames().push_back(name);
   PetscCall(PetscOptionsString(name, help, "README.md", value->c_str(), buf, sizeof buf, &given));
+  PetscCheck(!given || buf[0], PETSC_COMM_WORLD, PETSC_ERR_USER_INPUT, "%s needs a value (%s)", name, help);
   if (given) *value = buf;
   if (set) *set = given;
   PetscFunctionReturn(0);
@@ -67,6 +75,8 @@ PetscErrorCode optionNumber(PetscOptionItems *PetscOptionsObject, const char *na
   PetscBool given = PETSC_FALSE, has;
   char text[64] = "";
   PetscCall(PetscOptionsGetString(nullptr, nullptr, name, text, sizeof text, &has));
+  // PETSc takes an option without its value as not given.
+  PetscCheck(!has || text[0], PETSC_COMM_WORLD, PETSC_ERR_USER_INPUT, "%s needs a value (%s)", name, help);
   if constexpr (std::is_same_v<T, PetscInt>) {
     PetscCall(PetscOptionsInt(name, help, "README.md", *value, value, &given));
     // PETSc wraps integers beyond PetscInt's range (4294967297 elements would
@@ -125,6 +135,8 @@ PetscErrorCode readRunOptions(PetscOptionItems *PetscOptionsObject, AppOptions *
   PetscCall(optionNumber(PetscOptionsObject, "-boom_error_wait",
                          "Seconds a rank that failed alone waits for the others before it aborts the job",
                          &o->errorWait));
+  PetscCall(optionBool(PetscOptionsObject, "-boom_allow_unused",
+                       "Options that this run does not use are warnings, not errors", &o->allowUnused));
   PetscFunctionReturn(0);
 }
 
@@ -145,7 +157,7 @@ PetscErrorCode readSceneOverrides(PetscOptionItems *PetscOptionsObject, Scene *s
     if (b.type != BodySpec::Type::AncfBeam) continue;
     PetscInt n = all ? elements : b.elements;
     const std::string name = "-boom_elements_" + b.name, help = "Elements of the beam '" + b.name + "'";
-    PetscCall(PetscOptionsInt(name.c_str(), help.c_str(), "README.md", n, &n, nullptr));
+    PetscCall(optionNumber(PetscOptionsObject, name.c_str(), help.c_str(), &n));
     b.elements = static_cast<int>(n);
   }
   DynamicSpec &d = scene->dynamic;
@@ -202,6 +214,58 @@ PetscErrorCode checkOverrides(const Scene &scene, const Overrides &set)
              "-boom_modal_count must lie in [0, 1000]");
   PetscCheck(!set.loadSteps || scene.statics.load_steps >= 1, comm, PETSC_ERR_USER_INPUT,
              "-boom_load_steps must be >= 1");
+  if (scene.analysis == Scene::Analysis::Dynamic) {
+    PetscCheck(!(set.dt || set.tEnd) || d.dt <= d.t_end, comm, PETSC_ERR_USER_INPUT,
+               "the step %s s (-ts_dt or dynamic.dt) is longer than the end time %s s (-ts_max_time or dynamic.t_end)",
+               numberText(d.dt).c_str(), numberText(d.t_end).c_str());
+    // A run of 1e15 steps would never end: refuse it with the number.
+    const double steps = d.t_end / d.dt;
+    PetscCheck(steps <= kMaxSteps, comm, PETSC_ERR_USER_INPUT,
+               "the run would take %s steps (end time %s s / step %s s), more than the limit of %s; use a larger "
+               "-ts_dt or a shorter -ts_max_time",
+               numberText(steps).c_str(), numberText(d.t_end).c_str(), numberText(d.dt).c_str(),
+               numberText(kMaxSteps).c_str());
+  }
+  PetscFunctionReturn(0);
+}
+
+// Options that the analysis of this scene does not use: an error, or with
+// -boom_allow_unused a warning, naming each (a -ts_dt on a static scene was
+// silently ignored before).
+PetscErrorCode checkApplicable(const Scene &scene, const AppOptions &opts)
+{
+  const bool dynamic = scene.analysis == Scene::Analysis::Dynamic;
+  const char *analysis = dynamic ? "dynamic" : scene.analysis == Scene::Analysis::Static ? "static" : "modal";
+  PetscFunctionBeginUser;
+  const char *dynamicOnly[] = {"-ts_dt", "-ts_max_time", "-boom_rho_inf", "-boom_restart", "-boom_checkpoint",
+                               "-boom_checkpoint_interval", "-boom_adaptive_tol", "-boom_energy_tolerance",
+                               "-boom_state_interval", "-boom_jacobian_reuse", "-boom_jacobian_refresh_ratio",
+                               "-boom_jacobian_max_age", "-boom_schur_dd", "-ts_max_steps", "-ts_exact_final_time"};
+  std::vector<std::string> unused;
+  for (const char *name : dynamicOnly) {
+    PetscBool given;
+    PetscCall(PetscOptionsHasName(nullptr, nullptr, name, &given));
+    if (given && !dynamic) unused.push_back(name);
+  }
+  PetscBool steps;
+  PetscCall(PetscOptionsHasName(nullptr, nullptr, "-boom_load_steps", &steps));
+  if (steps && dynamic) unused.push_back("-boom_load_steps");
+  for (const std::string &name : unused) {
+    const std::string reason = name + " does not apply to the " + analysis + " analysis of " + scene.file;
+    PetscCheck(opts.allowUnused, PETSC_COMM_WORLD, PETSC_ERR_USER_INPUT,
+               "%s (-boom_allow_unused: ignore it with a warning)", reason.c_str());
+    PetscCall(PetscPrintf(PETSC_COMM_WORLD, "warning: %s: ignored\n", reason.c_str()));
+  }
+  PetscFunctionReturn(0);
+}
+
+// An interval of simulated time below the step fires at every step.
+PetscErrorCode warnShortInterval(const char *what, double interval, double dt)
+{
+  PetscFunctionBeginUser;
+  if (interval > 0 && interval < dt)
+    PetscCall(PetscPrintf(PETSC_COMM_WORLD, "warning: %s %s s is shorter than the step %s s: at every step\n", what,
+                          numberText(interval).c_str(), numberText(dt).c_str()));
   PetscFunctionReturn(0);
 }
 
@@ -220,6 +284,43 @@ std::size_t editDistance(const std::string &a, const std::string &b)
     }
   }
   return row[b.size()];
+}
+
+// An option name (-ts_dt), not a value (-5, -1e-3, -.5, -inf).
+bool isOptionName(const std::string &word)
+{
+  if (word.size() < 2 || word[0] != '-' || !std::isalpha(static_cast<unsigned char>(word[1]))) return false;
+  return word != "-inf" && word != "-nan" && word != "-INF" && word != "-NAN" && word != "-Inf";
+}
+
+// PETSc's and MPI's options for the whole program (logging, memory, debugger, ...).
+bool isGlobalPetscOption(const std::string &name)
+{
+  static const char *const global[] = {"-help", "-version", "-log", "-malloc", "-memory_view", "-info", "-options_",
+                                       "-on_error_", "-no_signal_handler", "-fp_trap", "-debugger", "-start_in_debugger",
+                                       "-stop_for_debugger", "-display", "-nox", "-checkstack", "-objects_dump",
+                                       "-skip_petscrc", "-history", "-check_pointer_intensity", "-error_output_",
+                                       "-get_total_flops", "-saws", "-mpi", "-petsc", "-use_gpu_aware_mpi", "-device",
+                                       "-viewer_", "-draw_", "-x_virtual", "-python", "-slepc", "-vec_", "-sf_", "-is_",
+                                       "-dm_", "-citations", "-timing"};
+  for (const char *g : global)
+    if (name.rfind(g, 0) == 0) return true;
+  return false;
+}
+
+// An option of PETSc or SLEPc: a global one, or one of the solver families,
+// plain (dynamics) or with the statics' (static_) or the eigen-analysis'
+// (modal_) prefix.
+bool isPetscOption(const std::string &name)
+{
+  if (isGlobalPetscOption(name)) return true;
+  static const char *const families[] = {"ts_", "snes_", "ksp_", "pc_", "mat_", "eps_", "st_", "bv_", "ds_", "rg_",
+                                         "fn_", "boom_"};
+  for (const char *prefix : {"-", "-static_", "-modal_"})
+    for (const char *f : families)
+      if (name.rfind(std::string(prefix) + f, 0) == 0 && (std::string(f) != "boom_" || std::string(prefix) != "-"))
+        return true;
+  return false;
 }
 
 } // namespace
@@ -252,7 +353,19 @@ PetscErrorCode readAppOptions(Scene *scene, AppOptions *opts)
   PetscCheck(opts->adaptiveTolerance >= 0, PETSC_COMM_WORLD, PETSC_ERR_USER_INPUT, "-boom_adaptive_tol must be >= 0");
   PetscCheck(opts->checkpointInterval >= 0, PETSC_COMM_WORLD, PETSC_ERR_USER_INPUT,
              "-boom_checkpoint_interval must be >= 0");
-  if (scene) PetscCall(checkOverrides(*scene, set));
+  PetscCheck(opts->errorWait >= 0 && opts->errorWait <= 86400, PETSC_COMM_WORLD, PETSC_ERR_USER_INPUT,
+             "-boom_error_wait must lie in [0, 86400] s (got %s)", numberText(opts->errorWait).c_str());
+  if (!scene) PetscFunctionReturn(0);
+  PetscCall(checkOverrides(*scene, set));
+  PetscCall(checkApplicable(*scene, *opts));
+  if (scene->analysis == Scene::Analysis::Dynamic) {
+    const double dt = scene->dynamic.dt;
+    PetscCall(warnShortInterval("the state interval (-boom_state_interval, output.state_interval)",
+                                scene->output.state_interval, dt));
+    PetscCall(warnShortInterval("the tracking interval (-boom_tracking_interval, tracking.interval)",
+                                scene->tracking.interval, dt));
+    PetscCall(warnShortInterval("the checkpoint interval (-boom_checkpoint_interval)", opts->checkpointInterval, dt));
+  }
   PetscFunctionReturn(0);
 }
 
@@ -268,7 +381,16 @@ PetscErrorCode rejectUnknownOptions(const Scene *scene)
   const std::string perBody = "-boom_elements_";
   std::string word;
   while (words >> word) {
-    if (word.rfind("-boom_", 0) != 0 || std::find(known.begin(), known.end(), word) != known.end()) continue;
+    if (!isOptionName(word) || std::find(known.begin(), known.end(), word) != known.end()) continue;
+    if (word.rfind("-boom_", 0) != 0) {
+      // Not boomdyn's: it must belong to a family of PETSc or SLEPc options
+      // (possibly with the statics' or the eigen-analysis' prefix).
+      PetscCheck(isPetscOption(word), PETSC_COMM_WORLD, PETSC_ERR_USER_INPUT,
+                 "unknown option %s: neither a boomdyn option (-boom_..., -o, -scene) nor a PETSc or SLEPc one "
+                 "(boomdyn -help lists them)",
+                 word.c_str());
+      continue;
+    }
     if (word.rfind(perBody, 0) == 0 && word.size() > perBody.size()) {
       // Every -boom_elements_<name> must name an ANCF body of this scene.
       const std::string name = word.substr(perBody.size());
@@ -285,6 +407,51 @@ PetscErrorCode rejectUnknownOptions(const Scene *scene)
     SETERRQ(PETSC_COMM_WORLD, PETSC_ERR_USER_INPUT, "unknown option %s; did you mean %s? (boomdyn -help lists them all)",
             word.c_str(), closest->c_str());
   }
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode userOptionNames(std::vector<std::string> *names)
+{
+  char *all;
+  PetscFunctionBeginUser;
+  PetscCall(PetscOptionsGetAll(nullptr, &all));
+  std::istringstream words(all);
+  PetscCall(PetscFree(all));
+  std::string word;
+  names->clear();
+  while (words >> word)
+    if (isOptionName(word)) names->push_back(word);
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode reportUnusedOptions(const std::vector<std::string> &given, std::string *unused)
+{
+  PetscInt n;
+  char **names, **values;
+  PetscFunctionBeginUser;
+  PetscCall(PetscOptionsLeftGet(nullptr, &n, &names, &values));
+  unused->clear();
+  for (PetscInt i = 0; i < n; ++i) {
+    const std::string name = std::string("-") + names[i];
+    // Options that PETSc or boomdyn set for themselves (-mat_mumps_icntl_14) are not the user's.
+    if (std::find(given.begin(), given.end(), name) == given.end() || isGlobalPetscOption(name)) continue;
+    *unused += (unused->empty() ? "" : " ") + name;
+  }
+  PetscCall(PetscOptionsLeftRestore(nullptr, &n, &names, &values));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode rejectStrayArguments(int argc, char **argv)
+{
+  PetscFunctionBeginUser;
+  // argv[1] is the scene; after it, every word is an option or the value of
+  // the option before it. A word after a word is a second scene or a value
+  // without its option.
+  for (int i = 2; i < argc; ++i)
+    PetscCheck(isOptionName(argv[i]) || isOptionName(argv[i - 1]), PETSC_COMM_WORLD, PETSC_ERR_USER_INPUT,
+               "unexpected argument '%s' after '%s': boomdyn runs one scene (the first argument), and every other "
+               "argument is an option (-name [value])",
+               argv[i], argv[i - 1]);
   PetscFunctionReturn(0);
 }
 

@@ -11,6 +11,7 @@
 #include <petscsys.h>
 
 #include <string>
+#include <vector>
 
 namespace boomdyn {
 
@@ -27,7 +28,8 @@ struct AppOptions {
   std::string restartPath;       // -boom_restart: continue a dynamic run from this checkpoint
   bool partitionReport = false;  // -boom_partition_report P: no run, a partition report into P parts
   PetscInt partitionParts = 0;
-  double errorWait = 30;         // -boom_error_wait (s)
+  double errorWait = 30;         // -boom_error_wait (s), in [0, 1 day]
+  bool allowUnused = false;      // -boom_allow_unused: unused options are warnings
   bool help = false;             // -help: options listed, no run without a scene
 };
 
@@ -41,6 +43,24 @@ PetscErrorCode sceneArgument(int argc, char **argv, std::string *path);
 PetscErrorCode readAppOptions(Scene *scene, AppOptions *opts);
 // Collective: an error naming every -boom_ option of the database that
 // boomdyn does not know, and the closest one it knows.
+// Every other option must be a PETSc or SLEPc option (by family: -ts_,
+// -ksp_, -static_snes_, -modal_eps_, -log_view, ...).
 PetscErrorCode rejectUnknownOptions(const Scene *scene);
+// A word after the scene that is neither an option nor an option's value
+// (a second scene file) is an error.
+PetscErrorCode rejectStrayArguments(int argc, char **argv);
+// The names of the options in the database (the user's, before the run).
+PetscErrorCode userOptionNames(std::vector<std::string> *names);
+// The options among `given` that nothing read during the run, separated by
+// blanks (PETSc's own global options excepted).
+PetscErrorCode reportUnusedOptions(const std::vector<std::string> &given, std::string *unused);
+
+// Collective: an output (results, checkpoint) that is an input of the run
+// (scene, restart file) or a folder, or results and checkpoint in one file,
+// is an error naming the option (run_files.cpp).
+PetscErrorCode checkRunFiles(const AppOptions &opts, bool dynamic);
+// Before PetscInitialize: an -options_file that cannot be read, as one line
+// (PETSc would print a traceback); empty when there is none.
+std::string unreadableOptionsFile(int argc, char **argv);
 
 } // namespace boomdyn

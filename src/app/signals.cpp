@@ -6,15 +6,21 @@ namespace boomdyn {
 
 namespace {
 volatile std::sig_atomic_t received = 0;
-extern "C" void onSignal(int signal) { received = signal; }
+// The first signal is the one reported (SIGPIPE repeats on every later write).
+extern "C" void onSignal(int signal)
+{
+  if (!received) received = signal;
+}
 } // namespace
 
 void installInterruptHandlers()
 {
-  // Installed after PetscInitialize, replacing PETSc's handlers for these two
-  // signals (PETSc's would abort without closing the results file).
-  std::signal(SIGINT, onSignal);
-  std::signal(SIGTERM, onSignal);
+  // Installed after PetscInitialize, replacing PETSc's handlers for these
+  // signals (PETSc's would abort without closing the results file). A closed
+  // terminal (SIGHUP) and a closed pipe on the output (SIGPIPE: boomdyn ... |
+  // head -1) end the run like SIGTERM: checkpoint, results file closed as
+  // "interrupted". After SIGPIPE, writes to the pipe fail with EPIPE and are lost.
+  for (int s : {SIGINT, SIGTERM, SIGHUP, SIGPIPE}) std::signal(s, onSignal);
 }
 
 bool interruptRequested(MPI_Comm comm)

@@ -1,4 +1,4 @@
-// SIGINT / SIGTERM: the handler only sets a flag; the time loop asks for it
+// SIGINT / SIGTERM / SIGHUP / SIGPIPE: the handler only sets a flag; the time loop asks for it
 // after every step (all ranks agree through an MPI reduction), writes a
 // checkpoint and closes the results file as "interrupted".
 #pragma once
@@ -8,7 +8,7 @@
 namespace boomdyn {
 
 void installInterruptHandlers();
-// Collective: true on every rank when any rank received SIGINT or SIGTERM.
+// Collective: true on every rank when any rank received one of these signals.
 bool interruptRequested(MPI_Comm comm);
 int interruptSignal();
 

@@ -6,6 +6,7 @@
 
 #include <hdf5.h>
 
+#include <cmath>
 #include <cstdio>
 #include <stdexcept>
 
@@ -96,12 +97,29 @@ PetscErrorCode CheckpointWriter::write(const std::string &path, const std::strin
     } catch (const std::exception &e) {
       ok = 0;
       std::snprintf(message, sizeof message, "%s", e.what());
+      std::remove((path + ".tmp").c_str()); // a half-written checkpoint (a full disk) is not left behind
     }
   }
   PetscCallMPI(MPI_Bcast(&ok, 1, MPI_INT, 0, comm_));
   if (!ok) PetscCallMPI(MPI_Bcast(message, sizeof message, MPI_CHAR, 0, comm_));
   PetscCheck(ok, comm_, PETSC_ERR_FILE_WRITE, "checkpoint %s: %s", path.c_str(), message);
   PetscFunctionReturn(0);
+}
+
+// The first value of the checkpoint that is not finite, named ('t = nan'); empty if none.
+std::string CheckpointReader::firstNonFinite(const std::vector<std::string> &scalarNames,
+                                             const std::vector<double> &scalarValues) const
+{
+  auto named = [](const std::string &what, double x) { return what + " = " + std::to_string(x); };
+  for (std::size_t i = 0; i < scalarNames.size() && i < scalarValues.size(); ++i)
+    if (!std::isfinite(scalarValues[i])) return "value '" + scalarNames[i] + "' is not finite (" + named(scalarNames[i], scalarValues[i]) + ")";
+  for (const auto &[n, v] : arrays_)
+    for (std::size_t i = 0; i < v.size(); ++i)
+      if (!std::isfinite(v[i])) return "array '" + n + "' is not finite at entry " + std::to_string(i);
+  for (const auto &[n, v] : vectors_)
+    for (std::size_t i = 0; i < v.size(); ++i)
+      if (!std::isfinite(v[i])) return "vector '" + n + "' is not finite at entry " + std::to_string(i);
+  return "";
 }
 
 PetscErrorCode CheckpointReader::read(const std::string &path)
@@ -132,13 +150,18 @@ PetscErrorCode CheckpointReader::read(const std::string &path)
         if (n != "none") vectors_[n] = readDoubles(file, "/vectors/" + n);
     } catch (const std::exception &e) {
       ok = 0;
-      std::snprintf(message, sizeof message, "%s", e.what());
+      std::snprintf(message, sizeof message, "%s (not a boomdyn checkpoint?)", e.what());
     }
     if (file >= 0) H5Fclose(file);
+    // A damaged or edited checkpoint (t = nan) would run on with nonsense.
+    if (ok) {
+      const std::string bad = firstNonFinite(scalarNames, scalarValues);
+      if (!bad.empty()) ok = 0, std::snprintf(message, sizeof message, "%s: the checkpoint is damaged", bad.c_str());
+    }
   }
   PetscCallMPI(MPI_Bcast(&ok, 1, MPI_INT, 0, comm_));
   if (!ok) PetscCallMPI(MPI_Bcast(message, sizeof message, MPI_CHAR, 0, comm_));
-  PetscCheck(ok, comm_, PETSC_ERR_USER_INPUT, "restart file %s: %s (not a boomdyn checkpoint?)", path.c_str(), message);
+  PetscCheck(ok, comm_, PETSC_ERR_USER_INPUT, "restart file %s: %s", path.c_str(), message);
   // Broadcast names, scalars, arrays and the scene text.
   auto bcastString = [&](std::string &s) -> PetscErrorCode {
     int n = static_cast<int>(s.size());

@@ -2,7 +2,17 @@
 
 #include <hdf5.h>
 
+#include <fcntl.h>
+#include <sys/file.h>
+#include <sys/stat.h>
+#include <sys/statvfs.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstdio>
+
 #include <algorithm>
+#include <cstring>
 #include <filesystem>
 #include <stdexcept>
 #include <unordered_map>
@@ -104,12 +114,16 @@ struct Series {
   hsize_t rows = 0;        // rows in the file
   hsize_t pendingRows = 0; // rows in `pending`
   std::vector<char> pending;
+  double chunkBytes = 0;     // file space of one chunk
+  double unflushedBytes = 0; // handed to HDF5 since the last flush (in its chunk cache)
 };
 
 } // namespace
 
 struct Hdf5File::Impl {
   std::string path;
+  dev_t device = 0; // identity of the created file (stillAtPath)
+  ino_t inode = 0;
   Handle file;
   Handle linkCreate; // creates missing intermediate groups
   Handle stringType; // variable-length UTF-8
@@ -221,6 +235,9 @@ struct Hdf5File::Impl {
   {
     const std::string dataset = normalizePath(datasetPath);
     requireNew(dataset);
+    double bytes = double(H5Tget_size(memType));
+    for (std::size_t d : dims) bytes *= double(d);
+    ensureSpace(bytes);
     std::vector<hsize_t> extent(dims.begin(), dims.end());
     Handle space(dims.empty() ? H5Screate(H5S_SCALAR)
                               : H5Screate_simple(static_cast<int>(extent.size()), extent.data(), nullptr),
@@ -273,6 +290,7 @@ struct Hdf5File::Impl {
     s.memType = memType;
     s.rank = rank;
     s.ncols = ncols;
+    s.chunkBytes = double(chunkRows) * double(rank == 2 ? chunkCols : 1) * double(H5Tget_size(memType));
     return series.emplace(dataset, std::move(s)).first->second;
   }
 
@@ -291,9 +309,38 @@ struct Hdf5File::Impl {
   }
 
   // Writes the buffered rows of one series as one block.
+  // A full file system must not reach HDF5: a write or flush that fails
+  // there leaves a file HDF5 can neither close nor read, and HDF5 then
+  // crashes at exit (SIGSEGV in MPI_Finalize). Writing stops while there is
+  // still room for the file's metadata and status (kReserve), with an error
+  // naming the file; the file stays readable up to its last flush.
+  static constexpr double kReserve = 256 * 1024;
+  mutable bool full = false;
+  // bytes: about to be written. The chunks in HDF5's cache take file space
+  // when they are flushed: a new chunk for every series written to since
+  // the last flush, plus what was written.
+  void ensureSpace(double bytes) const
+  {
+    for (const auto &[name, s] : series)
+      if (s.unflushedBytes > 0) bytes += s.chunkBytes + s.unflushedBytes;
+    if (!full) {
+      const std::filesystem::path folder = std::filesystem::path(path).parent_path();
+      struct statvfs fs;
+      if (::statvfs(folder.empty() ? "." : folder.c_str(), &fs) != 0) return;
+      const double available = double(fs.f_bavail) * double(fs.f_frsize);
+      if (available >= bytes + kReserve) return;
+      full = true;
+    }
+    throw std::runtime_error("HDF5 file '" + path + "': the file system is full (less than " +
+                             std::to_string(static_cast<long long>((bytes + kReserve) / 1024)) +
+                             " kB free); writing stopped, what was flushed before is readable");
+  }
+
   void writePending(const std::string &dataset, Series &s)
   {
     if (s.pendingRows == 0) return;
+    ensureSpace(double(s.pending.size()) + s.chunkBytes);
+    s.unflushedBytes += double(s.pending.size());
     const hsize_t extent[2] = {s.rows + s.pendingRows, s.ncols};
     checkStatus(H5Dset_extent(s.dataset.get(), extent), "cannot extend '" + dataset + "'");
     Handle fileSpace(checkId(H5Dget_space(s.dataset.get()), "cannot get the dataspace of '" + dataset + "'"),
@@ -328,11 +375,49 @@ Hdf5File::Hdf5File(const std::string &path, bool overwrite) : impl_(std::make_un
   if (!overwrite && std::filesystem::exists(path, ignored))
     throw std::runtime_error("output file '" + path + "' already exists; use the overwrite option to replace it");
 
-  // H5F_ACC_EXCL also refuses a file that appeared since the check above.
-  impl.file =
-      Handle(impl.checkId(H5Fcreate(path.c_str(), overwrite ? H5F_ACC_TRUNC : H5F_ACC_EXCL, H5P_DEFAULT, H5P_DEFAULT),
-                          "cannot create the file"),
-             H5Fclose);
+  // Closing the file closes every object still open in it (a dataset whose
+  // close failed on a full disk would otherwise keep the file open, and
+  // HDF5 would crash closing it at exit).
+  Handle access(impl.checkId(H5Pcreate(H5P_FILE_ACCESS), "cannot make a property list"), H5Pclose);
+  impl.checkStatus(H5Pset_fclose_degree(access.get(), H5F_CLOSE_STRONG), "cannot set the close degree");
+  if (overwrite) {
+    // Replacing a file: never truncate it in place. A file that another
+    // process is writing (HDF5 holds an exclusive lock on it) is left
+    // alone; otherwise the new file replaces it by a rename (below), so that
+    // a process still writing the old file (without locks) writes to its
+    // own, unlinked copy and notices at the end (stillAtPath), instead of
+    // both writing into one file.
+    const int fd = ::open(path.c_str(), O_RDONLY);
+    if (fd >= 0) {
+      const bool busy = ::flock(fd, LOCK_SH | LOCK_NB) != 0 && errno == EWOULDBLOCK;
+      ::close(fd); // releases the shared lock at once
+      if (busy)
+        throw std::runtime_error("output file '" + path + "' is being written by another run (it is locked); it was "
+                                 "left as it is: choose another -o, or wait for that run to end");
+    }
+  }
+  // The file is created under a temporary name and put in place once it
+  // exists: a creation that fails (a full disk) leaves nothing behind.
+  const std::string temporary = path + ".tmp" + std::to_string(::getpid());
+  const hid_t created = H5Fcreate(temporary.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, access.get());
+  if (created < 0) {
+    std::remove(temporary.c_str());
+    impl.fail("cannot create the file");
+  }
+  impl.file = Handle(created, H5Fclose);
+  // rename replaces an existing file; link refuses one that appeared since
+  // the check above.
+  if ((overwrite ? std::rename(temporary.c_str(), path.c_str()) : ::link(temporary.c_str(), path.c_str())) != 0) {
+    const int error = errno;
+    impl.file.reset();
+    std::remove(temporary.c_str());
+    if (error == EEXIST)
+      throw std::runtime_error("output file '" + path + "' already exists; use the overwrite option to replace it");
+    throw std::runtime_error("HDF5 file '" + path + "': cannot create the file (" + std::strerror(error) + ")");
+  }
+  if (!overwrite) ::unlink(temporary.c_str());
+  struct stat identity;
+  if (::stat(path.c_str(), &identity) == 0) impl.device = identity.st_dev, impl.inode = identity.st_ino;
   impl.linkCreate = Handle(impl.checkId(H5Pcreate(H5P_LINK_CREATE), "cannot make a property list"), H5Pclose);
   impl.checkStatus(H5Pset_create_intermediate_group(impl.linkCreate.get(), 1), "cannot set up group creation");
   impl.stringType = Handle(impl.checkId(H5Tcopy(H5T_C_S1), "cannot make the string type"), H5Tclose);
@@ -370,6 +455,12 @@ const std::string &Hdf5File::path() const
 }
 
 bool Hdf5File::isOpen() const { return impl_ && impl_->file.valid(); }
+
+bool Hdf5File::stillAtPath() const
+{
+  struct stat now;
+  return impl_ && ::stat(impl_->path.c_str(), &now) == 0 && now.st_dev == impl_->device && now.st_ino == impl_->inode;
+}
 
 Hdf5File::Impl &Hdf5File::live() const
 {
@@ -483,7 +574,9 @@ void Hdf5File::flush()
 {
   Impl &impl = live();
   impl.writeAllPending();
+  impl.ensureSpace(0);
   impl.checkStatus(H5Fflush(impl.file.get(), H5F_SCOPE_LOCAL), "cannot flush");
+  for (auto &[name, s] : impl.series) s.unflushedBytes = 0;
 }
 
 void Hdf5File::close()
@@ -491,12 +584,22 @@ void Hdf5File::close()
   if (!isOpen())
     return;
   Impl &impl = *impl_;
-  impl.writeAllPending();
+  // A failed write (a full disk) still closes the file: the error is
+  // reported after HDF5 has let go of it, not at exit inside HDF5.
+  std::string pendingError;
+  try {
+    if (!impl.full) impl.writeAllPending(); // a full file system: the rows since the last flush are dropped
+  } catch (const std::exception &e) {
+    pendingError = e.what();
+  }
   // Objects first: the file is only really closed once nothing in it is open.
   impl.series.clear();
   impl.linkCreate.reset();
   impl.stringType.reset();
-  if (impl.file.reset() < 0)
+  const bool closed = impl.file.reset() >= 0;
+  if (!pendingError.empty())
+    throw std::runtime_error(pendingError);
+  if (!closed)
     impl.fail("cannot close the file");
 }
 

@@ -315,6 +315,11 @@ void ResultsWriter::writeXdmf() const
   }
   out << "  </Grid>\n </Domain>\n</Xdmf>\n";
   out.close();
+  // A failed write (a full disk) keeps the previous XDMF file, not an empty one.
+  if (!out) {
+    std::remove((xmf + ".tmp").c_str());
+    throw std::runtime_error("cannot write '" + xmf + "' (a full disk?)");
+  }
   std::rename((xmf + ".tmp").c_str(), xmf.c_str());
 }
 
@@ -412,7 +417,11 @@ PetscErrorCode ResultsWriter::finish(const std::string &status, PetscInt steps, 
     }
     if (!model_.frictionJointNames().empty())
       file_->setAttribute("/summary", "stick_slip_events", static_cast<long long>(eventCount_));
+    const bool taken = !file_->stillAtPath();
     file_->close();
+    if (taken)
+      throw std::runtime_error("the results file '" + path_ + "' was removed or replaced by another process during "
+                               "the run: the results of this run are lost");
   }));
   PetscFunctionReturn(0);
 }

@@ -234,6 +234,38 @@ YAML::Mark markAtLineStart(const std::string &text, std::size_t offset)
                    std::to_string(std::max(mark.column, 0) + 1) + ": YAML syntax error: " + message);
 }
 
+// The offset of the first byte that is not part of a valid UTF-8 sequence
+// (overlong forms and surrogates included), or npos.
+std::size_t firstInvalidUtf8(const std::string &text)
+{
+  const auto *p = reinterpret_cast<const unsigned char *>(text.data());
+  const std::size_t n = text.size();
+  for (std::size_t i = 0; i < n;) {
+    const unsigned char c = p[i];
+    std::size_t len = c < 0x80 ? 1 : (c >> 5) == 0x6 ? 2 : (c >> 4) == 0xE ? 3 : (c >> 3) == 0x1E ? 4 : 0;
+    if (len == 0 || i + len > n || (len == 2 && c < 0xC2)) return i;
+    for (std::size_t k = 1; k < len; ++k)
+      if ((p[i + k] & 0xC0) != 0x80) return i;
+    if (len == 3) {
+      const unsigned cp = ((c & 0x0Fu) << 12) | ((p[i + 1] & 0x3Fu) << 6) | (p[i + 2] & 0x3Fu);
+      if (cp < 0x800 || (cp >= 0xD800 && cp <= 0xDFFF)) return i;
+    }
+    if (len == 4) {
+      const unsigned cp = ((c & 0x07u) << 18) | ((p[i + 1] & 0x3Fu) << 12) | ((p[i + 2] & 0x3Fu) << 6) | (p[i + 3] & 0x3Fu);
+      if (cp < 0x10000 || cp > 0x10FFFF) return i;
+    }
+    i += len;
+  }
+  return std::string::npos;
+}
+
+std::string hexByte(char c)
+{
+  static const char digits[] = "0123456789ABCDEF";
+  const auto b = static_cast<unsigned char>(c);
+  return std::string{digits[b >> 4], digits[b & 0xF]};
+}
+
 // The parse proper; parseScene adds the catch-all around it.
 Scene parseChecked(const std::string &text, const std::string &file_label)
 {
@@ -241,6 +273,12 @@ Scene parseChecked(const std::string &text, const std::string &file_label)
   // yaml-cpp silently stops at a NUL byte; say so instead of reading half a file.
   if (const auto nul = text.find('\0'); nul != std::string::npos)
     report.fail(markAtLineStart(text, nul), "", "the file contains a NUL byte (is it a text file?)");
+  // The scene text is stored in the results as UTF-8 and read back by the
+  // Python tools: a file in another encoding (Latin-1 'é' in a comment) is
+  // refused where its first invalid byte is.
+  if (const auto bad = firstInvalidUtf8(text); bad != std::string::npos)
+    report.fail(markAtLineStart(text, bad), "",
+                "the file is not valid UTF-8 (byte 0x" + hexByte(text[bad]) + "); save it as UTF-8");
 
   YAML::Node root;
   DocumentCount count;

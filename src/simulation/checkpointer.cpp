@@ -1,6 +1,7 @@
 // Checkpoints of a dynamic run: every interval of simulated time (not at
 // the last step: the run is complete there) and when the run is interrupted.
 #include "boomdyn/monitors.hpp"
+#include "boomdyn/schedule.hpp"
 #include "boomdyn/simulation.hpp"
 
 namespace boomdyn {
@@ -18,7 +19,7 @@ PetscErrorCode Checkpointer::afterStep(const RunState &s, std::string *)
   PetscFunctionBeginUser;
   if (!s.dynamic || interval_ <= 0 || s.t < next_ - 1e-9 * s.h || s.last) PetscFunctionReturn(0);
   // The schedule moves on first: the checkpoint holds the next time.
-  while (next_ <= s.t + 1e-9 * s.h) next_ += interval_;
+  next_ = nextScheduledTime(next_, interval_, s.t, 1e-9 * s.h);
   PetscCall(write(s.t));
   PetscFunctionReturn(0);
 }

@@ -4,7 +4,10 @@
 // the end.
 #include "boomdyn/simulation.hpp"
 
+#include "boomdyn/schema.hpp"
 #include "boomdyn/slider_tracker.hpp"
+
+#include <algorithm>
 
 namespace boomdyn {
 
@@ -33,10 +36,33 @@ PetscErrorCode Simulation::restore(RunState *state)
   PetscCheck(in.sceneText() == scene_.text, comm_, PETSC_ERR_USER_INPUT,
              "restart file %s was written for another scene text than %s", options_.restartPath.c_str(),
              scene_.file.c_str());
+  // The options that define the run must be those of the run that wrote
+  // the checkpoint (older checkpoints do not hold them).
+  const char *file = options_.restartPath.c_str();
+  const struct {
+    const char *key, *option;
+    double value;
+  } defining[] = {{"option_dt", "-ts_dt (dynamic.dt)", scene_.dynamic.dt},
+                  {"option_rho_inf", "-boom_rho_inf (dynamic.rho_inf)", scene_.dynamic.rho_inf},
+                  {"option_adaptive_tol", "-boom_adaptive_tol", options_.adaptiveTolerance}};
+  for (const auto &d : defining)
+    PetscCheck(!in.hasScalar(d.key) || in.scalar(d.key) == d.value, comm_, PETSC_ERR_USER_INPUT,
+               "restart file %s was written with %s = %s, this run has %s: restart with the options of that run", file,
+               d.option, numberText(in.scalar(d.key)).c_str(), numberText(d.value).c_str());
   PetscCall(integrator_->restore(in));
   PetscCall(restoreStepper(in, &stepper_));
   PetscCall(dynamicState(state));
+  PetscCheck(integrator_->time() < scene_.dynamic.t_end, comm_, PETSC_ERR_USER_INPUT,
+             "restart file %s is at t = %s s, not before the end time %s s (-ts_max_time, dynamic.t_end)", file,
+             numberText(integrator_->time()).c_str(), numberText(scene_.dynamic.t_end).c_str());
+  // A state edited or damaged so that it violates the constraints would
+  // run on from a wrong configuration.
   outcome_.maxViolation = in.scalar("max_violation");
+  const double allowed = std::max(1e-6, 10 * outcome_.maxViolation);
+  PetscCheck(state->violation <= allowed, comm_, PETSC_ERR_USER_INPUT,
+             "restart file %s: the saved state violates the constraints by %s (the run that wrote it reached at "
+             "most %s): the checkpoint is damaged",
+             file, numberText(state->violation).c_str(), numberText(outcome_.maxViolation).c_str());
   for (auto &m : monitors_) PetscCall(m->restore(in));
   PetscFunctionReturn(0);
 }

@@ -2,6 +2,7 @@
 // the first step at or after every tracking interval, and the tracked shape
 // at the first analysis at or after each requested time.
 #include "boomdyn/monitors.hpp"
+#include "boomdyn/schedule.hpp"
 #include "boomdyn/simulation.hpp"
 
 #include <slepcsys.h>
@@ -13,6 +14,7 @@ namespace boomdyn {
 FrequencyTracking::FrequencyTracking(Simulation &sim, ResultsWriter &writer)
   : sim_(sim), writer_(writer), interval_(sim.scene().tracking.interval), shapeTimes_(sim.scene().tracking.shapesAt)
 {
+  std::sort(shapeTimes_.rbegin(), shapeTimes_.rend());
 }
 
 PetscErrorCode FrequencyTracking::setUp()
@@ -30,12 +32,13 @@ PetscErrorCode FrequencyTracking::track(const RunState &s, double h)
   TrackedModes modes;
   PetscCall(tracker_->analyze(s.t, s.q, s.lambda, &modes));
   bool shape = false;
-  while (!shapeTimes_.empty() && *std::min_element(shapeTimes_.begin(), shapeTimes_.end()) <= s.t + 1e-9 * h) {
-    shapeTimes_.erase(std::min_element(shapeTimes_.begin(), shapeTimes_.end()));
+  // shapeTimes_ is sorted latest first: the due times come off its back.
+  while (!shapeTimes_.empty() && shapeTimes_.back() <= s.t + 1e-9 * h) {
+    shapeTimes_.pop_back();
     shape = true;
   }
   PetscCall(writer_.appendTracking(modes, shape));
-  while (next_ <= s.t + 1e-9 * h) next_ += interval_;
+  next_ = nextScheduledTime(next_, interval_, s.t, 1e-9 * h);
   PetscFunctionReturn(0);
 }
 
@@ -67,6 +70,7 @@ PetscErrorCode FrequencyTracking::restore(const CheckpointReader &in)
   PetscFunctionBeginUser;
   next_ = in.scalar("next_track");
   shapeTimes_ = in.array("shape_times");
+  std::sort(shapeTimes_.rbegin(), shapeTimes_.rend());
   PetscCall(tracker_->restore(in));
   PetscFunctionReturn(0);
 }

@@ -2,6 +2,7 @@
 // (energies, violation, sensors) and one /joints row per step, state
 // snapshots every state interval and at the end, the modes, the summary.
 #include "boomdyn/monitors.hpp"
+#include "boomdyn/schedule.hpp"
 #include "boomdyn/simulation.hpp"
 
 namespace boomdyn {
@@ -85,7 +86,7 @@ PetscErrorCode ResultsOutput::afterStep(const RunState &s, std::string *)
   PetscCall(writeJoints(s));
   if ((stateInterval_ > 0 && s.t >= nextState_ - 1e-9 * s.h) || s.last) {
     PetscCall(writer_.appendState(s.t, s.q, s.v, s.lambda));
-    while (stateInterval_ > 0 && nextState_ <= s.t + 1e-9 * s.h) nextState_ += stateInterval_;
+    if (stateInterval_ > 0) nextState_ = nextScheduledTime(nextState_, stateInterval_, s.t, 1e-9 * s.h);
   }
   PetscFunctionReturn(0);
 }

@@ -49,7 +49,7 @@ PetscErrorCode Simulation::run(const std::function<bool()> &stop)
   outcome_.dynamic = integrator_ != nullptr;
   for (auto &m : monitors_) PetscCall(m->setUp());
   if (integrator_) PetscCall(runDynamic(stop));
-  else PetscCall(runStatic());
+  else PetscCall(runStatic(stop));
   PetscFunctionReturn(0);
 }
 
@@ -106,6 +106,10 @@ PetscErrorCode Simulation::writeCheckpoint(const std::string &path) const
   PetscCall(integrator_->save(w));
   PetscCall(saveStepper(w, stepper_));
   w.addScalar("max_violation", outcome_.maxViolation);
+  // The options that define the run, checked by a restart (Simulation::restore).
+  w.addScalar("option_dt", scene_.dynamic.dt);
+  w.addScalar("option_rho_inf", scene_.dynamic.rho_inf);
+  w.addScalar("option_adaptive_tol", options_.adaptiveTolerance);
   for (const auto &m : monitors_) PetscCall(m->save(w));
   PetscCall(w.write(path, scene_.text));
   PetscFunctionReturn(0);

@@ -5,7 +5,7 @@
 
 namespace boomdyn {
 
-PetscErrorCode Simulation::runStatic()
+PetscErrorCode Simulation::runStatic(const std::function<bool()> &stop)
 {
   RunState state;
   PetscHandle<Vec> noMultipliers;
@@ -19,7 +19,11 @@ PetscErrorCode Simulation::runStatic()
   const double t = scene_.statics.time;
   const bool modal = options_.modal && scene_.modal.count > 0;
   const bool modesAtStart = modal && scene_.modal.at == "start";
-  if (modesAtStart) PetscCall(modalAnalysis(t, x_, noMultipliers));
+  // Interrupts are honoured between load increments and before an
+  // eigen-analysis (SLEPc's solve itself is not interruptible).
+  bool interrupted = false;
+  auto stopRequested = [&] { return interrupted = interrupted || (stop && stop()); };
+  if (modesAtStart && !stopRequested()) PetscCall(modalAnalysis(t, x_, noMultipliers));
 
   auto onLoadStep = [&](const LoadStepInfo &s) -> PetscErrorCode {
     AssemblyContext ctx;
@@ -37,11 +41,13 @@ PetscErrorCode Simulation::runStatic()
     state.lambda = statics_->multipliers(); // of this increment (output channels)
     std::string unused; // static runs have no checks that end them
     PetscCall(afterStep(state, &unused));
+    if (!state.last && s.stop) *s.stop = stopRequested();
     PetscFunctionReturn(0);
   };
   PetscBool converged = PETSC_TRUE;
-  PetscCall(statics_->solve(t, scene_.statics.load_steps, x_, onLoadStep, &converged));
+  if (!interrupted) PetscCall(statics_->solve(t, scene_.statics.load_steps, x_, onLoadStep, &converged));
   if (!converged) outcome_.status = "failed: " + statics_->failure();
+  else if (interrupted || (modal && !modesAtStart && stopRequested())) outcome_.status = "interrupted", converged = PETSC_FALSE;
   state.t = t;
   state.lambda = statics_->multipliers();
   outcome_.endTime = t;

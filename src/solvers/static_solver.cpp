@@ -63,7 +63,9 @@ PetscErrorCode StaticSolver::solve(double t, int loadSteps, Vec x,
       // Unscaled multipliers of this increment, for the caller's outputs.
       PetscCall(VecSet(lambda_, 0.0));
       PetscCall(assembler_.copyMultipliers(x, lambda_, sigma_));
-      if (onStep) PetscCall(onStep({done, its}));
+      bool stop = false;
+      if (onStep) PetscCall(onStep({done, its, &stop}));
+      if (stop) break; // interrupted: x holds the last converged increment
       // After a cut, grow back towards the nominal increment.
       if (increment < nominal && ++successes >= 2) increment = std::min(nominal, 2.0 * increment), successes = 0;
       continue;

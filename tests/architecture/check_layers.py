@@ -26,6 +26,7 @@ CORE = {"time_function", "scene", "work_item", "component_spec", "type_schema", 
 HEADER_LAYERS = {
     "schema": "core", "slack_drive": "physics", "physics_type": "model", "model_builder": "model",
     "post_step_hook": "model", "state_archive": "solvers", "monitor": "simulation", "monitors": "simulation",
+    "schedule": "simulation",
 }
 INCLUDE = re.compile(r'^\s*#\s*include\s+"boomdyn/([a-z0-9_]+)\.hpp"', re.M)
 

@@ -1,0 +1,395 @@
+#!/usr/bin/env python3
+"""Faults injected for real into boomdyn runs (issue 17): schedules that
+cannot spin, signals on one and two ranks, two runs on one output file,
+outputs that are inputs, a full file system, damaged or mismatched
+checkpoints, stray arguments and unused options. One case per call, so that
+each is its own CTest (tests/faults/CMakeLists part of tests/fuzz.cmake).
+
+Usage: run_fault.py BOOMDYN SOURCE_DIR WORK_DIR CASE [MPIEXEC...]
+Exit 0: passed; 1: failed; 77: skipped (said why)."""
+import os
+import shutil
+import signal
+import subprocess
+import sys
+import time
+
+boomdyn, source, work, case = sys.argv[1:5]
+mpiexec = sys.argv[5:]
+sys.path.insert(0, os.path.join(source, "tests"))
+import script_checks  # noqa: E402
+
+results = []
+check = script_checks.checker(results)
+SKIP = 77
+scene = os.path.join(source, "inputs", "cantilever_dynamic.yaml")
+static_scene = os.path.join(source, "inputs", "cantilever_static.yaml")
+scratch = os.path.join(work, "faults", case)
+shutil.rmtree(scratch, ignore_errors=True)
+os.makedirs(scratch)
+env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
+
+
+def path(name):
+    return os.path.join(scratch, name)
+
+
+def run(args, timeout=30, scene_file=scene, **kw):
+    """A run that must end by itself within timeout (a hang is killed and fails)."""
+    cmd = [boomdyn, scene_file, *args]
+    try:
+        r = subprocess.run(cmd, capture_output=True, text=True, timeout=timeout, env=kw.pop("env", env), **kw)
+        return r.returncode, r.stdout + r.stderr
+    except subprocess.TimeoutExpired as e:
+        out = (e.stdout or b"").decode(errors="replace") + (e.stderr or b"").decode(errors="replace")
+        return "hang", out
+
+
+def last_line(out):
+    lines = out.strip().splitlines()
+    return lines[-1] if lines else ""
+
+
+def status(h5):
+    """/summary/status and the number of /steps rows of a results file (None if unreadable)."""
+    try:
+        import h5py
+        with h5py.File(h5, "r") as f:
+            s = f["summary"].attrs.get("status")
+            s = s.decode() if isinstance(s, bytes) else s
+            return s, f["steps/time"].shape[0], (f["state/time"].shape[0] if "state/time" in f else 0)
+    except Exception as e:  # noqa: BLE001 (any failure to read is the finding)
+        return None, str(e), 0
+
+
+def quick(*extra):
+    return ["-o", path("r.h5"), "-boom_overwrite", "-boom_quiet", *extra]
+
+
+# ---------------------------------------------------------------- hangs
+def interval_tiny(option, extra=()):
+    rc, out = run(quick("-ts_max_time", "0.01", option, "1e-300", *extra))
+    check(rc == 0, "%s 1e-300 ends (exit %s, not a hang)" % (option, rc))
+    check("shorter than the step" in out, "and says it fires at every step: " + out.strip().splitlines()[0][:120]
+          if out.strip() else "no warning")
+    return rc
+
+
+def case_state_interval_tiny():
+    if interval_tiny("-boom_state_interval") == 0:
+        s, steps, states = status(path("r.h5"))
+        check(s == "completed" and states == steps, "a snapshot at every step (%s snapshots, %s rows)" % (states, steps))
+
+
+def case_checkpoint_interval_tiny():
+    interval_tiny("-boom_checkpoint_interval", ["-boom_checkpoint", path("c.chk.h5")])
+
+
+def case_tracking_interval_tiny():
+    interval_tiny("-boom_tracking_interval")
+
+
+def case_too_many_steps():
+    rc, out = run(quick("-ts_dt", "1e-12"), timeout=20)
+    check(rc == 1 and "1e+12 steps" in last_line(out), "1e12 steps are refused with the number: " + last_line(out)[:160])
+
+
+def signal_static(sig, name):
+    out = path("s.h5")
+    p = subprocess.Popen([boomdyn, static_scene, "-o", out, "-boom_overwrite", "-boom_quiet", "-boom_load_steps",
+                          "1000000"], stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, env=env)
+    time.sleep(2.0)
+    p.send_signal(sig)
+    try:
+        text, _ = p.communicate(timeout=20)
+    except subprocess.TimeoutExpired:
+        p.kill()
+        text, _ = p.communicate()
+        check(False, "%s: the static run ignores %s (killed after 20 s)" % (name, name))
+        return
+    check(p.returncode == 128 + sig, "static run ends on %s with exit %d (got %d)" % (name, 128 + sig, p.returncode))
+    check("interrupted" in last_line(text), "and says so: " + last_line(text)[:140])
+    s, rows, _ = status(out)
+    check(s == "interrupted", "its results file says 'interrupted' (%s, %s rows)" % (s, rows))
+
+
+def case_static_sigterm():
+    signal_static(signal.SIGTERM, "SIGTERM")
+
+
+def case_static_sigint():
+    signal_static(signal.SIGINT, "SIGINT")
+
+
+# --------------------------------------------------------------- signals
+def long_run(extra=(), ranks=1, stdout=subprocess.PIPE):
+    cmd = ([*mpiexec] if ranks > 1 else []) + [boomdyn, scene, "-o", path("r.h5"), "-boom_overwrite", "-ts_max_time",
+                                               "100", "-boom_checkpoint", path("r.chk.h5"), *extra]
+    return subprocess.Popen(cmd, stdout=stdout, stderr=subprocess.STDOUT, text=True, env=env, start_new_session=True)
+
+
+def rank_pids(p, ranks):
+    """The boomdyn processes of a run (the launcher's children on several ranks)."""
+    if ranks == 1:
+        return [p.pid]
+    out = subprocess.run(["pgrep", "-s", str(p.pid), "-f", boomdyn], capture_output=True, text=True).stdout.split()
+    return [int(x) for x in out if int(x) != p.pid]
+
+
+def interrupted_like_sigterm(p, sig, name, ranks, text=None):
+    try:
+        text_out, _ = p.communicate(timeout=30)
+    except subprocess.TimeoutExpired:
+        os.killpg(p.pid, signal.SIGKILL)
+        p.communicate()
+        check(False, "%s on %d rank(s): the run did not end within 30 s" % (name, ranks))
+        return
+    text = text if text is not None else text_out
+    check(p.returncode == 128 + sig, "%s on %d rank(s): exit %d like SIGTERM's 128 + signal (got %s)"
+          % (name, ranks, 128 + sig, p.returncode))
+    check("PETSC ERROR" not in (text or ""), "no PETSc signal handler traceback")
+    s, rows, _ = status(path("r.h5"))
+    check(s == "interrupted", "results file closed as 'interrupted' (%s, %s rows)" % (s, rows))
+    check(os.path.exists(path("r.chk.h5")), "a checkpoint was written")
+
+
+def signal_run(sig, name, ranks):
+    if ranks > 1 and not mpiexec:
+        print("skipped: no mpiexec given")
+        sys.exit(SKIP)
+    p = long_run(["-boom_quiet"], ranks)
+    time.sleep(3.0)
+    pids = rank_pids(p, ranks)
+    check(len(pids) == ranks, "found the %d boomdyn process(es): %s" % (ranks, pids))
+    if pids:
+        os.kill(pids[0], sig)  # one rank only: the others learn it through the run's reduction
+    interrupted_like_sigterm(p, sig, name, ranks)
+
+
+def case_sighup_1():
+    signal_run(signal.SIGHUP, "SIGHUP", 1)
+
+
+def case_sighup_2():
+    signal_run(signal.SIGHUP, "SIGHUP", 2)
+
+
+def case_sigpipe_2():
+    signal_run(signal.SIGPIPE, "SIGPIPE", 2)
+
+
+def case_sigpipe_1():
+    """boomdyn ... | head -1: the reader goes away after the first line."""
+    out = open(path("stdout.txt"), "w")
+    cmd = [boomdyn, scene, "-o", path("r.h5"), "-boom_overwrite", "-ts_max_time", "100", "-boom_checkpoint",
+           path("r.chk.h5"), "-boom_progress_interval", "0.1"]
+    shell = subprocess.Popen("%s | head -1" % " ".join(cmd), shell=True, stdout=out, stderr=subprocess.STDOUT, env=env,
+                             executable="/bin/bash")
+    try:
+        shell.wait(timeout=40)
+    except subprocess.TimeoutExpired:
+        subprocess.run(["pkill", "-KILL", "-s", str(shell.pid)])
+        check(False, "boomdyn | head -1 did not end within 40 s")
+        return
+    # the exit status of boomdyn itself: PIPESTATUS is not visible here, so ask the results and the checkpoint.
+    s, rows, _ = status(path("r.h5"))
+    check(s == "interrupted", "boomdyn | head -1: results closed as 'interrupted' (%s, %s rows)" % (s, rows))
+    check(os.path.exists(path("r.chk.h5")), "and a checkpoint was written")
+    rc = subprocess.run("set -o pipefail; %s | head -1 > /dev/null" % " ".join(cmd), shell=True,
+                        executable="/bin/bash", env=env, timeout=40).returncode
+    check(rc == 128 + signal.SIGPIPE, "exit %d like SIGTERM's 128 + signal (got %d)" % (128 + signal.SIGPIPE, rc))
+
+
+# --------------------------------------------------------- files destroyed
+def case_output_is_scene():
+    copy = path("scene.yaml")
+    shutil.copy(scene, copy)
+    before = open(copy, "rb").read()
+    os.symlink(copy, path("link.h5"))
+    for spelling in [os.path.join(scratch, ".", "scene.yaml"), path("link.h5")]:
+        rc, out = run(["-o", spelling, "-boom_overwrite", "-boom_quiet", "-ts_max_time", "0.01"], scene_file=copy)
+        check(rc == 1 and "is the scene file" in last_line(out), "-o %s is refused: %s" % (spelling, last_line(out)[:120]))
+    check(open(copy, "rb").read() == before, "the scene file is unchanged")
+
+
+def case_output_is_checkpoint_or_restart():
+    rc, out = run(quick("-ts_max_time", "0.02", "-boom_checkpoint_interval", "0.01", "-boom_checkpoint",
+                        path("c.chk.h5")))
+    check(rc == 0 and os.path.exists(path("c.chk.h5")), "a checkpoint to restart from (exit %s)" % rc)
+    before = open(path("c.chk.h5"), "rb").read()
+    rc, out = run(["-o", path("c.chk.h5"), "-boom_overwrite", "-boom_quiet", "-boom_restart", path("c.chk.h5"),
+                   "-boom_checkpoint", path("other.chk.h5")])
+    check(rc == 1 and "is the restart file" in last_line(out), "-o = restart file is refused: " + last_line(out)[:120])
+    rc, out = run(["-o", path("x.h5"), "-boom_overwrite", "-boom_quiet", "-boom_checkpoint", path("x.h5")])
+    check(rc == 1 and "is the checkpoint file" in last_line(out), "-o = checkpoint is refused: " + last_line(out)[:120])
+    check(open(path("c.chk.h5"), "rb").read() == before, "the checkpoint is unchanged")
+
+
+def concurrent(extra_env):
+    e = dict(env, **extra_env)
+    shared = path("shared.h5")
+    first = subprocess.Popen([boomdyn, scene, "-o", shared, "-boom_quiet", "-ts_max_time", "8", "-boom_checkpoint",
+                              path("a.chk.h5")], stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, env=e)
+    for _ in range(200):  # until the first run has created its file
+        if os.path.exists(shared) or first.poll() is not None:
+            break
+        time.sleep(0.05)
+    time.sleep(0.5)
+    check(first.poll() is None, "the first run is still writing when the second starts")
+    rc, out = run(["-o", shared, "-boom_overwrite", "-boom_quiet", "-ts_max_time", "0.01", "-boom_checkpoint",
+                   path("b.chk.h5")], env=e)
+    text, _ = first.communicate(timeout=120)
+    return first.returncode, text, rc, out, shared
+
+
+def case_concurrent_overwrite():
+    rc1, text1, rc2, out2, shared = concurrent({})
+    check(rc2 == 1 and "being written by another run" in last_line(out2),
+          "the second run (-boom_overwrite) is refused: " + last_line(out2)[:120])
+    check(rc1 == 0, "the first run completes (exit %s)" % rc1)
+    s, rows, _ = status(shared)
+    check(s == "completed" and rows == 8001, "its file is whole: %s, %s rows of 8001" % (s, rows))
+
+
+def case_concurrent_overwrite_unlocked():
+    """Without HDF5's file locks the second run replaces the file (by rename,
+    never by truncation); the first must not exit 0 with its results gone."""
+    rc1, text1, rc2, out2, shared = concurrent({"HDF5_USE_FILE_LOCKING": "FALSE"})
+    check(rc2 == 0, "the second run (-boom_overwrite) completes (exit %s)" % rc2)
+    check(rc1 == 1 and "removed or replaced by another process" in last_line(text1),
+          "the first run fails, saying its file was taken: " + last_line(text1)[:120])
+    s, rows, _ = status(shared)
+    check(s == "completed" and rows == 11, "the file is the second run's, readable (%s, %s rows)" % (s, rows))
+
+
+# ------------------------------------------------------------- full disk
+def mounted_small_fs(size):
+    """A tmpfs of this size, or None (not root, or no mounts allowed)."""
+    mnt = path("fs")
+    os.makedirs(mnt)
+    if os.geteuid() != 0 or not shutil.which("mount"):
+        return None
+    r = subprocess.run(["mount", "-t", "tmpfs", "-o", "size=%s" % size, "tmpfs", mnt], capture_output=True, text=True)
+    return mnt if r.returncode == 0 else None
+
+
+def with_small_fs(size, body):
+    mnt = mounted_small_fs(size)
+    if not mnt:
+        print("skipped: cannot mount a small tmpfs here (needs root and mount rights)")
+        sys.exit(SKIP)
+    try:
+        body(mnt)
+    finally:
+        subprocess.run(["umount", "-l", mnt])
+
+
+def case_full_disk_results():
+    def body(mnt):
+        out = os.path.join(mnt, "r.h5")
+        rc, text = run(["-o", out, "-boom_quiet", "-ts_max_time", "10", "-boom_state_interval", "0.001"], timeout=60)
+        check(rc == 1, "a full file system ends the run with exit 1, no crash (got %s)" % rc)
+        check(last_line(text).startswith("boomdyn: error:") and "file system is full" in last_line(text),
+              "with one line: " + last_line(text)[:140])
+        s, rows, _ = status(out)
+        check(s is not None and s.startswith("failed"), "the results are readable with a status (%s, %s rows)" % (s, rows))
+        left = sorted(os.listdir(mnt))
+        check(left == ["r.h5", "r.xmf"] and os.path.getsize(os.path.join(mnt, "r.xmf")) > 0,
+              "no temporary file, no empty XDMF: %s" % left)
+    with_small_fs("3m", body)
+
+
+def case_full_disk_checkpoint():
+    def body(mnt):
+        with open(os.path.join(mnt, "filler"), "wb") as f:  # leaves about 100 kB
+            f.write(b"\0" * (3 * 1024 * 1024 - 100 * 1024))
+        chk = os.path.join(mnt, "r.chk.h5")
+        rc, text = run(quick("-ts_max_time", "1", "-boom_checkpoint_interval", "0.2", "-boom_checkpoint", chk))
+        check(rc == 1 and "file system is full" in last_line(text), "exit 1 with one line (exit %s): %s"
+              % (rc, last_line(text)[:140]))
+        s, rows, _ = status(path("r.h5"))
+        check(s is not None and s.startswith("failed"), "the results say the run failed (%s, %s rows)" % (s, rows))
+        check(sorted(os.listdir(mnt)) == ["filler"], "no half-written checkpoint or .tmp left: %s" % os.listdir(mnt))
+    with_small_fs("3m", body)
+
+
+# ----------------------------------------------------------- checkpoints
+def checkpoint():
+    chk = path("c.chk.h5")
+    rc, out = run(quick("-ts_max_time", "0.05", "-boom_checkpoint_interval", "0.03", "-boom_checkpoint", chk))
+    check(rc == 0 and os.path.exists(chk), "a checkpoint at t = 0.03 s (exit %s)" % rc)
+    return chk
+
+
+def edit_checkpoint(chk, edit):
+    import h5py
+    damaged = path("damaged.chk.h5")
+    shutil.copy(chk, damaged)
+    with h5py.File(damaged, "r+") as f:
+        edit(f)
+    return damaged
+
+
+def restart(chk, *extra):
+    return run(["-o", path("restarted.h5"), "-boom_overwrite", "-boom_quiet", "-boom_restart", chk, "-boom_checkpoint",
+                path("next.chk.h5"), "-ts_max_time", "0.06", *extra])
+
+
+def case_restart_nan_time():
+    def nan_t(f):
+        names = [n.decode() if isinstance(n, bytes) else n for n in f["scalar_names"][:]]
+        v = f["scalar_values"][:]
+        v[names.index("t")] = float("nan")
+        f["scalar_values"][:] = v
+    rc, out = restart(edit_checkpoint(checkpoint(), nan_t))
+    check(rc == 1 and "'t' is not finite" in last_line(out), "t = nan is refused: " + last_line(out)[:140])
+
+
+def case_restart_violated_state():
+    def move_clamped_node(f):
+        q = f["vectors/q"][:]
+        q[0] += 0.05
+        f["vectors/q"][:] = q
+    rc, out = restart(edit_checkpoint(checkpoint(), move_clamped_node))
+    check(rc == 1 and "violates the constraints by 0.05" in last_line(out),
+          "a state 5 cm off its clamp is refused: " + last_line(out)[:140])
+
+
+def case_restart_options_mismatch():
+    chk = checkpoint()
+    rc, out = restart(chk)
+    check(rc == 0, "the same options restart (exit %s)" % rc)
+    for option, value, named in [("-ts_dt", "0.002", "-ts_dt"), ("-boom_rho_inf", "0.5", "-boom_rho_inf"),
+                                 ("-boom_adaptive_tol", "1e-6", "-boom_adaptive_tol")]:
+        rc, out = restart(chk, option, value)
+        check(rc == 1 and named in last_line(out) and "restart with the options" in last_line(out),
+              "%s %s is refused naming it: %s" % (option, value, last_line(out)[:140]))
+    rc, out = run(["-o", path("restarted.h5"), "-boom_overwrite", "-boom_quiet", "-boom_restart", chk,
+                   "-ts_max_time", "0.02"])
+    check(rc == 1 and "not before the end time" in last_line(out),
+          "an end time before the checkpoint's is refused: " + last_line(out)[:140])
+
+
+# --------------------------------------------------------------- messages
+def case_second_scene():
+    rc, out = run([static_scene, *quick("-ts_max_time", "0.01")])
+    check(rc == 1 and "unexpected argument" in last_line(out) and "cantilever_static.yaml" in last_line(out),
+          "a second scene file is refused: " + last_line(out)[:140])
+
+
+def case_unused_option():
+    rc, out = run(quick("-ts_max_time", "0.005", "-ksp_typo", "3"))
+    check(rc == 0 and "options not used by this run: -ksp_typo" in out, "-ksp_typo is reported as unused (exit %s): %s"
+          % (rc, last_line(out)[:140]))
+    rc, out = run(["-o", path("s.h5"), "-boom_overwrite", "-boom_quiet", "-ts_dt", "0.1", "-boom_allow_unused"],
+                  scene_file=static_scene)
+    check(rc == 0 and "warning: -ts_dt does not apply to the static analysis" in out,
+          "-boom_allow_unused: -ts_dt on a static scene is a warning (exit %s)" % rc)
+
+
+CASES = {name[len("case_"):]: f for name, f in globals().items() if name.startswith("case_")}
+
+if case not in CASES:
+    print("unknown case %s; cases: %s" % (case, " ".join(sorted(CASES))))
+    sys.exit(2)
+sys.exit(script_checks.finish(CASES[case], results))
