@@ -29,6 +29,8 @@ const char *const libraryOptions[] = {"-boom_jacobian_reuse", "-boom_jacobian_re
 // More steps than a run can take (1e9 steps of the smallest model take
 // about a day).
 constexpr double kMaxSteps = 1e9;
+// Runs longer than this are announced with their number of steps.
+constexpr double kManySteps = 1e7;
 
 std::vector<std::string> &appOptionNames()
 {
@@ -94,6 +96,11 @@ PetscErrorCode optionNumber(PetscOptionItems *PetscOptionsObject, const char *na
     // inf and nan parse as numbers; no boomdyn quantity may be either.
     PetscCheck(!given || std::isfinite(*value), PETSC_COMM_WORLD, PETSC_ERR_USER_INPUT,
                "%s %s: must be a finite number", name, text);
+    // The scene's rule for magnitudes (checked_yaml.cpp): products of such
+    // numbers would overflow or underflow.
+    PetscCheck(!given || *value == 0 || (std::fabs(*value) >= 1e-100 && std::fabs(*value) <= 1e100), PETSC_COMM_WORLD,
+               PETSC_ERR_USER_INPUT, "%s %s: outside the range boomdyn computes with (0, or 1e-100 to 1e+100 in magnitude)",
+               name, text);
   }
   if (set) *set = given;
   PetscFunctionReturn(0);
@@ -359,7 +366,11 @@ PetscErrorCode readAppOptions(Scene *scene, AppOptions *opts)
   PetscCall(checkOverrides(*scene, set));
   PetscCall(checkApplicable(*scene, *opts));
   if (scene->analysis == Scene::Analysis::Dynamic) {
-    const double dt = scene->dynamic.dt;
+    const double dt = scene->dynamic.dt, steps = scene->dynamic.t_end / dt;
+    if (steps > kManySteps && !opts->quiet)
+      PetscCall(PetscPrintf(PETSC_COMM_WORLD, "warning: the run takes %s steps (end time %s s / step %s s)\n",
+                            numberText(steps).c_str(), numberText(scene->dynamic.t_end).c_str(),
+                            numberText(dt).c_str()));
     PetscCall(warnShortInterval("the state interval (-boom_state_interval, output.state_interval)",
                                 scene->output.state_interval, dt));
     PetscCall(warnShortInterval("the tracking interval (-boom_tracking_interval, tracking.interval)",

@@ -57,6 +57,11 @@ std::string describeNode(const YAML::Node &node)
   return (node.Tag() == "!" ? "the quoted string '" : "'") + text + "'";
 }
 
+// Every nonzero number of a scene lies between these magnitudes (SI units:
+// nothing physical comes near them, and products of a few such numbers stay
+// far from a double's limits, about 1e-308 and 1e308).
+constexpr double kSmallestMagnitude = 1e-100, kLargestMagnitude = 1e100;
+
 // Parses a YAML plain scalar as a finite double. Locale-independent
 // (from_chars); YAML's .nan/.inf spellings and C's nan/inf are all refused,
 // as are values that overflow a double (1e999).
@@ -149,6 +154,14 @@ double CheckedYaml::number(const Field &f) const
   double value = 0;
   switch (parseNumber(text, value)) {
   case NumberText::Ok:
+    // Magnitudes far outside any physical input (a length of 1e-310, a
+    // density of 1e-300, a gravity of 1e300, a sine of 1e308 Hz) overflow or
+    // underflow in the products of the model and were reported as a
+    // singular system: name the value here instead.
+    if (value != 0 && !(std::fabs(value) >= kSmallestMagnitude && std::fabs(value) <= kLargestMagnitude))
+      report_.fail(f, "the magnitude of " + text + " is outside the range boomdyn computes with (0, or " +
+                          numberText(kSmallestMagnitude) + " to " + numberText(kLargestMagnitude) +
+                          "): products of it would overflow or underflow");
     return value;
   case NumberText::NotFinite:
     report_.fail(f, "must be a finite number (got " + text + ")");
