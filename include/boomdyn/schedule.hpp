@@ -2,7 +2,8 @@
 // frequency tracking). The schedule moves by whole intervals past the
 // current time; an interval below the resolution of the time (1e-300 s at
 // t = 1 s) or so small that it would take more than a few additions moves
-// in one step, so that no schedule loop can spin (issue 17): such an
+// in one step, so that no schedule loop can spin (issue 17; 1e-90 s spun
+// forever): such an
 // interval fires at every step.
 #pragma once
 

@@ -458,11 +458,24 @@ PetscErrorCode rejectStrayArguments(int argc, char **argv)
   // argv[1] is the scene; after it, every word is an option or the value of
   // the option before it. A word after a word is a second scene or a value
   // without its option.
-  for (int i = 2; i < argc; ++i)
-    PetscCheck(isOptionName(argv[i]) || isOptionName(argv[i - 1]), PETSC_COMM_WORLD, PETSC_ERR_USER_INPUT,
+  // A switch (-boom_quiet) followed by a word that is no truth value: the
+  // word is a stray argument too (PETSc would say "Unknown logical value").
+  const char *switches[] = {"-boom_overwrite", "-boom_quiet", "-boom_allow_unused", "-boom_jacobian_reuse",
+                            "-boom_schur_dd"};
+  const char *truth[] = {"1", "0", "true", "false", "yes", "no", "on", "off", "TRUE", "FALSE", "YES", "NO"};
+  for (int i = 2; i < argc; ++i) {
+    const bool afterSwitch = std::find_if(std::begin(switches), std::end(switches), [&](const char *s) {
+                               return std::strcmp(s, argv[i - 1]) == 0;
+                             }) != std::end(switches);
+    const bool truthValue = std::find_if(std::begin(truth), std::end(truth), [&](const char *s) {
+                              return std::strcmp(s, argv[i]) == 0;
+                            }) != std::end(truth);
+    PetscCheck(isOptionName(argv[i]) || (isOptionName(argv[i - 1]) && !(afterSwitch && !truthValue)),
+               PETSC_COMM_WORLD, PETSC_ERR_USER_INPUT,
                "unexpected argument '%s' after '%s': boomdyn runs one scene (the first argument), and every other "
                "argument is an option (-name [value])",
                argv[i], argv[i - 1]);
+  }
   PetscFunctionReturn(0);
 }
 

@@ -407,7 +407,15 @@ Hdf5File::Hdf5File(const std::string &path, bool overwrite) : impl_(std::make_un
   impl.file = Handle(created, H5Fclose);
   // rename replaces an existing file; link refuses one that appeared since
   // the check above.
-  if ((overwrite ? std::rename(temporary.c_str(), path.c_str()) : ::link(temporary.c_str(), path.c_str())) != 0) {
+  int placed = overwrite ? std::rename(temporary.c_str(), path.c_str()) : ::link(temporary.c_str(), path.c_str());
+  if (placed != 0 && !overwrite && errno != EEXIST) {
+    // A file system without hard links (FAT, some network mounts): rename,
+    // after checking once more that no file has appeared.
+    std::error_code ignoredToo;
+    if (std::filesystem::exists(path, ignoredToo)) errno = EEXIST;
+    else placed = std::rename(temporary.c_str(), path.c_str());
+  }
+  if (placed != 0) {
     const int error = errno;
     impl.file.reset();
     std::remove(temporary.c_str());
@@ -415,7 +423,7 @@ Hdf5File::Hdf5File(const std::string &path, bool overwrite) : impl_(std::make_un
       throw std::runtime_error("output file '" + path + "' already exists; use the overwrite option to replace it");
     throw std::runtime_error("HDF5 file '" + path + "': cannot create the file (" + std::strerror(error) + ")");
   }
-  if (!overwrite) ::unlink(temporary.c_str());
+  if (!overwrite) ::unlink(temporary.c_str()); // the hard link's first name (no-op after a rename)
   struct stat identity;
   if (::stat(path.c_str(), &identity) == 0) impl.device = identity.st_dev, impl.inode = identity.st_ino;
   impl.linkCreate = Handle(impl.checkId(H5Pcreate(H5P_LINK_CREATE), "cannot make a property list"), H5Pclose);
