@@ -1,10 +1,9 @@
 // The next time of a periodic schedule (state snapshots, checkpoints,
 // frequency tracking). The schedule moves by whole intervals past the
-// current time; an interval below the resolution of the time (1e-300 s at
-// t = 1 s) or so small that it would take more than a few additions moves
-// in one step, so that no schedule loop can spin (issue 17; 1e-90 s spun
-// forever): such an
-// interval fires at every step.
+// current time; an interval below the resolution of the time (1e-90 s at
+// t = 1 s, which made the schedule loop spin forever) or so small that it
+// would take more than a few additions moves in one step, so that no
+// schedule loop can spin (issue 17): such an interval fires at every step.
 #pragma once
 
 #include <cmath>
