@@ -42,6 +42,11 @@ foreach(kind bad_model bad_input)
   endforeach()
 endforeach()
 
+# A small file system for the full-disk cases where no tmpfs may be mounted:
+# preloaded into boomdyn, it fakes statvfs() and ENOSPC in one folder.
+add_library(small_disk_shim MODULE ${CMAKE_SOURCE_DIR}/tests/faults/small_disk_shim.c)
+target_link_libraries(small_disk_shim PRIVATE ${CMAKE_DL_LIBS})
+
 # Faults injected into real runs (issue 17; tests/faults/run_fault.py): one
 # CTest per case, faults.<case>. Exit 77 (no tmpfs mount allowed, no mpiexec)
 # is a skip, with the reason in the output.
@@ -49,13 +54,14 @@ set(fault_cases
   state_interval_tiny checkpoint_interval_tiny tracking_interval_tiny too_many_steps static_sigterm static_sigint
   sighup_1 sighup_2 sigpipe_1 sigpipe_2
   output_is_scene output_is_checkpoint_or_restart concurrent_overwrite concurrent_overwrite_unlocked
-  full_disk_results full_disk_checkpoint
+  full_disk_results full_disk_checkpoint full_disk_results_shim full_disk_checkpoint_shim
   restart_nan_time restart_violated_state restart_options_mismatch
   second_scene unused_option)
 foreach(case ${fault_cases})
   add_test(NAME faults.${case}
     COMMAND /usr/bin/python3 ${CMAKE_SOURCE_DIR}/tests/faults/run_fault.py $<TARGET_FILE:boomdyn> ${CMAKE_SOURCE_DIR}
             ${CMAKE_BINARY_DIR} ${case} ${MPIEXEC_EXECUTABLE} ${MPIEXEC_NUMPROC_FLAG} 2 --oversubscribe --allow-run-as-root)
-  set_tests_properties(faults.${case} PROPERTIES LABELS faults TIMEOUT 180 SKIP_RETURN_CODE 77)
+  set_tests_properties(faults.${case} PROPERTIES LABELS faults TIMEOUT 180 SKIP_RETURN_CODE 77
+    ENVIRONMENT "BOOMDYN_SMALL_DISK_SHIM=$<TARGET_FILE:small_disk_shim>")
 endforeach()
 set_tests_properties(faults.sighup_2 faults.sigpipe_2 PROPERTIES PROCESSORS 2)

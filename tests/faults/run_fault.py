@@ -274,18 +274,31 @@ def mounted_small_fs(size):
     return mnt if r.returncode == 0 else None
 
 
-def with_small_fs(size, body):
-    mnt = mounted_small_fs(size)
-    if not mnt:
-        print("skipped: cannot mount a small tmpfs here (needs root and mount rights)")
+def with_small_fs(size, body, shim_only=False):
+    """A small file system: a tmpfs where the test may mount one, otherwise
+    (or with shim_only) a folder that the preloaded small_disk_shim makes look
+    like one (statvfs and ENOSPC on write); skipped with a message without both."""
+    global env
+    mnt = None if shim_only else mounted_small_fs(size)
+    if mnt:
+        try:
+            body(mnt)
+        finally:
+            subprocess.run(["umount", "-l", mnt])
+        return
+    shim = os.environ.get("BOOMDYN_SMALL_DISK_SHIM", "")
+    if not os.path.exists(shim):
+        print("skipped: cannot mount a small tmpfs here, and no small_disk_shim (BOOMDYN_SMALL_DISK_SHIM) was built")
         sys.exit(SKIP)
-    try:
-        body(mnt)
-    finally:
-        subprocess.run(["umount", "-l", mnt])
+    folder = path("fs")
+    os.makedirs(folder, exist_ok=True)
+    print("small file system: %s preloaded on %s" % (os.path.basename(shim), folder))
+    env = dict(env, LD_PRELOAD=shim, BOOMDYN_SMALL_DISK_DIR=folder,
+               BOOMDYN_SMALL_DISK_BYTES=str(int(size.rstrip("m")) * 1024 * 1024))
+    body(folder)
 
 
-def case_full_disk_results():
+def full_disk_results(shim_only):
     def body(mnt):
         out = os.path.join(mnt, "r.h5")
         rc, text = run(["-o", out, "-boom_quiet", "-ts_max_time", "10", "-boom_state_interval", "0.001"], timeout=60)
@@ -297,10 +310,10 @@ def case_full_disk_results():
         left = sorted(os.listdir(mnt))
         check(left == ["r.h5", "r.xmf"] and os.path.getsize(os.path.join(mnt, "r.xmf")) > 0,
               "no temporary file, no empty XDMF: %s" % left)
-    with_small_fs("3m", body)
+    with_small_fs("3m", body, shim_only)
 
 
-def case_full_disk_checkpoint():
+def full_disk_checkpoint(shim_only):
     def body(mnt):
         with open(os.path.join(mnt, "filler"), "wb") as f:  # leaves about 100 kB
             f.write(b"\0" * (3 * 1024 * 1024 - 100 * 1024))
@@ -311,7 +324,23 @@ def case_full_disk_checkpoint():
         s, rows, _ = status(path("r.h5"))
         check(s is not None and s.startswith("failed"), "the results say the run failed (%s, %s rows)" % (s, rows))
         check(sorted(os.listdir(mnt)) == ["filler"], "no half-written checkpoint or .tmp left: %s" % os.listdir(mnt))
-    with_small_fs("3m", body)
+    with_small_fs("3m", body, shim_only)
+
+
+def case_full_disk_results():
+    full_disk_results(False)
+
+
+def case_full_disk_checkpoint():
+    full_disk_checkpoint(False)
+
+
+def case_full_disk_results_shim():
+    full_disk_results(True)
+
+
+def case_full_disk_checkpoint_shim():
+    full_disk_checkpoint(True)
 
 
 # ----------------------------------------------------------- checkpoints
