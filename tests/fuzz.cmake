@@ -54,7 +54,7 @@ set(fault_cases
   state_interval_tiny checkpoint_interval_tiny tracking_interval_tiny too_many_steps static_sigterm static_sigint
   sighup_1 sighup_2 sigpipe_1 sigpipe_2
   output_is_scene output_is_checkpoint_or_restart concurrent_overwrite concurrent_overwrite_unlocked
-  full_disk_results full_disk_checkpoint full_disk_results_shim full_disk_checkpoint_shim
+  full_disk_results full_disk_checkpoint full_disk_results_shim full_disk_checkpoint_shim full_disk_results_2
   restart_nan_time restart_violated_state restart_options_mismatch
   second_scene unused_option)
 foreach(case ${fault_cases})
@@ -64,4 +64,4 @@ foreach(case ${fault_cases})
   set_tests_properties(faults.${case} PROPERTIES LABELS faults TIMEOUT 180 SKIP_RETURN_CODE 77
     ENVIRONMENT "BOOMDYN_SMALL_DISK_SHIM=$<TARGET_FILE:small_disk_shim>")
 endforeach()
-set_tests_properties(faults.sighup_2 faults.sigpipe_2 PROPERTIES PROCESSORS 2)
+set_tests_properties(faults.sighup_2 faults.sigpipe_2 faults.full_disk_results_2 PROPERTIES PROCESSORS 2)

@@ -335,6 +335,28 @@ def case_full_disk_checkpoint():
     full_disk_checkpoint(False)
 
 
+def case_full_disk_results_2():
+    """Two ranks, the shim's small file system (rank 0 writes; every rank stops)."""
+    if not mpiexec:
+        print("skipped: no mpiexec given")
+        sys.exit(SKIP)
+
+    def body(folder):
+        out = os.path.join(folder, "r.h5")
+        cmd = [*mpiexec, "-x", "LD_PRELOAD", "-x", "BOOMDYN_SMALL_DISK_DIR", "-x", "BOOMDYN_SMALL_DISK_BYTES", boomdyn,
+               scene, "-o", out, "-boom_quiet", "-ts_max_time", "10", "-boom_state_interval", "0.001"]
+        try:
+            r = subprocess.run(cmd, capture_output=True, text=True, timeout=90, env=env)
+            rc, text = r.returncode, r.stdout
+        except subprocess.TimeoutExpired:
+            rc, text = "hang", ""
+        check(rc == 1, "two ranks end with exit 1 (got %s)" % rc)
+        check("file system is full" in last_line(text), "with one line: " + last_line(text)[:140])
+        s, rows, _ = status(out)
+        check(s is not None and s.startswith("failed"), "results readable with a status (%s, %s rows)" % (s, rows))
+    with_small_fs("3m", body, True)
+
+
 def case_full_disk_results_shim():
     full_disk_results(True)
 
