@@ -1,18 +1,11 @@
 #include "boomdyn/hdf5_file.hpp"
 
+#include "boomdyn/output_file.hpp"
+
 #include <hdf5.h>
 
-#include <fcntl.h>
-#include <sys/file.h>
-#include <sys/stat.h>
-#include <sys/statvfs.h>
-#include <unistd.h>
-
-#include <cerrno>
-#include <cstdio>
-
 #include <algorithm>
-#include <cstring>
+#include <cstdio>
 #include <filesystem>
 #include <stdexcept>
 #include <unordered_map>
@@ -122,8 +115,7 @@ struct Series {
 
 struct Hdf5File::Impl {
   std::string path;
-  dev_t device = 0; // identity of the created file (stillAtPath)
-  ino_t inode = 0;
+  FileIdentity identity; // of the created file (stillAtPath)
   Handle file;
   Handle linkCreate; // creates missing intermediate groups
   Handle stringType; // variable-length UTF-8
@@ -324,11 +316,8 @@ struct Hdf5File::Impl {
     for (const auto &[name, s] : series)
       if (s.unflushedBytes > 0) bytes += s.chunkBytes + s.unflushedBytes;
     if (!full) {
-      const std::filesystem::path folder = std::filesystem::path(path).parent_path();
-      struct statvfs fs;
-      if (::statvfs(folder.empty() ? "." : folder.c_str(), &fs) != 0) return;
-      const double available = double(fs.f_bavail) * double(fs.f_frsize);
-      if (available >= bytes + kReserve) return;
+      const double available = freeBytes(path);
+      if (available < 0 || available >= bytes + kReserve) return;
       full = true;
     }
     throw std::runtime_error("HDF5 file '" + path + "': the file system is full (less than " +
@@ -380,52 +369,26 @@ Hdf5File::Hdf5File(const std::string &path, bool overwrite) : impl_(std::make_un
   // HDF5 would crash closing it at exit).
   Handle access(impl.checkId(H5Pcreate(H5P_FILE_ACCESS), "cannot make a property list"), H5Pclose);
   impl.checkStatus(H5Pset_fclose_degree(access.get(), H5F_CLOSE_STRONG), "cannot set the close degree");
-  if (overwrite) {
-    // Replacing a file: never truncate it in place. A file that another
-    // process is writing (HDF5 holds an exclusive lock on it) is left
-    // alone; otherwise the new file replaces it by a rename (below), so that
-    // a process still writing the old file (without locks) writes to its
-    // own, unlinked copy and notices at the end (stillAtPath), instead of
-    // both writing into one file.
-    const int fd = ::open(path.c_str(), O_RDONLY);
-    if (fd >= 0) {
-      const bool busy = ::flock(fd, LOCK_SH | LOCK_NB) != 0 && errno == EWOULDBLOCK;
-      ::close(fd); // releases the shared lock at once
-      if (busy)
-        throw std::runtime_error("output file '" + path + "' is being written by another run (it is locked); it was "
-                                 "left as it is: choose another -o, or wait for that run to end");
-    }
-  }
-  // The file is created under a temporary name and put in place once it
-  // exists: a creation that fails (a full disk) leaves nothing behind.
-  const std::string temporary = path + ".tmp" + std::to_string(::getpid());
+  // Replacing a file: never truncate it in place, never one that another
+  // process is writing. The new file is created under a temporary name (a
+  // creation that fails, a full disk, leaves nothing behind) and moved into
+  // place, so that a process still writing the old file (without locks)
+  // writes to its own, unlinked copy and notices at the end (stillAtPath).
+  if (overwrite) refuseFileInUse(path);
+  const std::string temporary = temporaryName(path);
   const hid_t created = H5Fcreate(temporary.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, access.get());
   if (created < 0) {
     std::remove(temporary.c_str());
     impl.fail("cannot create the file");
   }
   impl.file = Handle(created, H5Fclose);
-  // rename replaces an existing file; link refuses one that appeared since
-  // the check above.
-  int placed = overwrite ? std::rename(temporary.c_str(), path.c_str()) : ::link(temporary.c_str(), path.c_str());
-  if (placed != 0 && !overwrite && errno != EEXIST) {
-    // A file system without hard links (FAT, some network mounts): rename,
-    // after checking once more that no file has appeared.
-    std::error_code ignoredToo;
-    if (std::filesystem::exists(path, ignoredToo)) errno = EEXIST;
-    else placed = std::rename(temporary.c_str(), path.c_str());
-  }
-  if (placed != 0) {
-    const int error = errno;
+  try {
+    placeFile(temporary, path, overwrite);
+  } catch (...) {
     impl.file.reset();
-    std::remove(temporary.c_str());
-    if (error == EEXIST)
-      throw std::runtime_error("output file '" + path + "' already exists; use the overwrite option to replace it");
-    throw std::runtime_error("HDF5 file '" + path + "': cannot create the file (" + std::strerror(error) + ")");
+    throw;
   }
-  if (!overwrite) ::unlink(temporary.c_str()); // the hard link's first name (no-op after a rename)
-  struct stat identity;
-  if (::stat(path.c_str(), &identity) == 0) impl.device = identity.st_dev, impl.inode = identity.st_ino;
+  impl.identity = fileIdentity(path);
   impl.linkCreate = Handle(impl.checkId(H5Pcreate(H5P_LINK_CREATE), "cannot make a property list"), H5Pclose);
   impl.checkStatus(H5Pset_create_intermediate_group(impl.linkCreate.get(), 1), "cannot set up group creation");
   impl.stringType = Handle(impl.checkId(H5Tcopy(H5T_C_S1), "cannot make the string type"), H5Tclose);
@@ -466,8 +429,7 @@ bool Hdf5File::isOpen() const { return impl_ && impl_->file.valid(); }
 
 bool Hdf5File::stillAtPath() const
 {
-  struct stat now;
-  return impl_ && ::stat(impl_->path.c_str(), &now) == 0 && now.st_dev == impl_->device && now.st_ino == impl_->inode;
+  return impl_ && sameFile(fileIdentity(impl_->path), impl_->identity);
 }
 
 Hdf5File::Impl &Hdf5File::live() const
