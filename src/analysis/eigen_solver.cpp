@@ -81,19 +81,16 @@ PetscErrorCode reportRejected(MPI_Comm comm, const std::string &why)
 
 } // namespace
 
-PetscErrorCode solveModes(Assembler &assembler, double t, Vec q, Vec lambda, int count, ModalResult *result,
-                          const ModalOptions &options)
+PetscInt finiteModeBound(const Model &model)
+{
+  return model.numCoordinates() - model.numMultipliers() - static_cast<PetscInt>(model.firstOrderCoordinates().size());
+}
+
+PetscErrorCode assemblePencil(Assembler &assembler, double t, Vec q, Vec lambda, Mat A, Mat B)
 {
   const PetscInt nq = assembler.model().numCoordinates();
-  // Owned by handles: an error (an eigenpair that did not converge) leaks nothing.
-  PetscHandle<Mat> A, B;
-  PetscHandle<Vec> x, xr, gathered, zero;
-  PetscHandle<EPS> eps;
-  PetscHandle<VecScatter> toZero;
-  ST st;
-  KSP ksp;
+  PetscHandle<Vec> x;
   PetscFunctionBeginUser;
-  PetscCall(PetscLogEventBegin(logEvents().eigen, 0, 0, 0, 0));
   // x = [q | lambda / sigma]. The constraint blocks are scaled by sigma, a
   // typical stiffness diagonal: with sigma = 1 they are ~1e-9 of K for steel
   // booms and MUMPS's threshold pivoting declares A - target B singular.
@@ -119,8 +116,6 @@ PetscErrorCode solveModes(Assembler &assembler, double t, Vec q, Vec lambda, int
   ctx.t = t;
   ctx.sigma = sigma;
   PetscCall(assembler.setOffsets(nullptr, nullptr, nullptr));
-  PetscCall(assembler.createMatrix(A.address()));
-  PetscCall(assembler.createMatrix(B.address()));
   ctx.kin = {1.0, 0.0, 0.0};
   PetscCall(assembler.evaluate(ctx, x, nullptr, A));
   // B: the same pattern as A (explicit zeros), so ST can combine them cheaply.
@@ -128,6 +123,48 @@ PetscErrorCode solveModes(Assembler &assembler, double t, Vec q, Vec lambda, int
   ctx.constraintBlocks = false;
   PetscCall(assembler.setOffsets(x, nullptr, nullptr)); // q = x (cQ = 0), so every kernel sees the real state
   PetscCall(assembler.evaluate(ctx, x, nullptr, B));
+
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode gatherShape(Assembler &assembler, Vec v, std::vector<double> *shape)
+{
+  PetscHandle<VecScatter> toZero;
+  PetscHandle<Vec> gathered;
+  PetscMPIInt rank;
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_rank(assembler.comm(), &rank));
+  PetscCall(VecScatterCreateToZero(v, toZero.address(), gathered.address()));
+  PetscCall(scatterValues(toZero, v, gathered, *shape));
+  if (rank == 0) {
+    shape->resize(assembler.model().numCoordinates());
+    double big = 0;
+    for (double s : *shape)
+      if (std::abs(s) > std::abs(big)) big = s;
+    if (big != 0)
+      for (double &s : *shape) s /= big;
+  } else {
+    shape->clear();
+  }
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode solveModes(Assembler &assembler, double t, Vec q, Vec lambda, int count, ModalResult *result,
+                          const ModalOptions &options)
+{
+  const PetscInt nq = assembler.model().numCoordinates();
+  // Owned by handles: an error (an eigenpair that did not converge) leaks nothing.
+  PetscHandle<Mat> A, B;
+  PetscHandle<Vec> xr, gathered, zero;
+  PetscHandle<EPS> eps;
+  PetscHandle<VecScatter> toZero;
+  ST st;
+  KSP ksp;
+  PetscFunctionBeginUser;
+  PetscCall(PetscLogEventBegin(logEvents().eigen, 0, 0, 0, 0));
+  PetscCall(assembler.createMatrix(A.address()));
+  PetscCall(assembler.createMatrix(B.address()));
+  PetscCall(assemblePencil(assembler, t, q, lambda, A, B));
 
   // Only finite eigenvalues are modes. The pencil has n - nf infinite ones
   // (a multiplier and the coordinate direction it fixes per constraint row,
@@ -137,8 +174,7 @@ PetscErrorCode solveModes(Assembler &assembler, double t, Vec q, Vec lambda, int
   // eigenvalue theta = 0, shifted back to omega^2 ~ +-1e36), and such a pair
   // passes every residual test: seen on cantilevers of 2-3 elements, where
   // the default ncv = nev + 15 exceeds nf. So ncv <= nf (issue 13, item 3).
-  const PetscInt finiteBound = nq - assembler.model().numMultipliers() -
-                               static_cast<PetscInt>(assembler.model().firstOrderCoordinates().size());
+  const PetscInt finiteBound = finiteModeBound(assembler.model());
   PetscCheck(count <= finiteBound, assembler.comm(), PETSC_ERR_USER_INPUT,
              "eigen-analysis: %d modes requested, but the model has at most %" PetscInt_FMT
              " finite modes (%" PetscInt_FMT " coordinates - %" PetscInt_FMT " constraint rows - %" PetscInt_FMT

@@ -27,6 +27,7 @@ struct AppOptions {
   std::string restartPath;       // -boom_restart: continue a dynamic run from this checkpoint
   bool partitionReport = false;  // -boom_partition_report P: no run, a partition report into P parts
   PetscInt partitionParts = 0;
+  bool trackingFull = false;     // -boom_tracking_full: full eigen-solve at every tracking analysis
   double errorWait = 30;         // -boom_error_wait (s)
   bool help = false;             // -help: options listed, no run without a scene
 };
