@@ -40,4 +40,16 @@ struct ModalOptions {
 PetscErrorCode solveModes(Assembler &assembler, double t, Vec q, Vec lambda, int count, ModalResult *result,
                           const ModalOptions &options = ModalOptions{});
 
+// The number of finite eigenvalues of the pencil (docs/model.md §5):
+// coordinates - constraint rows - first-order states.
+PetscInt finiteModeBound(const Model &model);
+
+// A and B of the pencil at (t, q, lambda) into matrices made by
+// assembler.createMatrix() (same pattern). Leaves the assembler's offsets at q.
+PetscErrorCode assemblePencil(Assembler &assembler, double t, Vec q, Vec lambda, Mat A, Mat B);
+
+// Coordinate part of v on rank 0 (empty elsewhere), divided by its entry of
+// largest magnitude (as ModalResult::shapes). Collective.
+PetscErrorCode gatherShape(Assembler &assembler, Vec v, std::vector<double> *shape);
+
 } // namespace boomdyn

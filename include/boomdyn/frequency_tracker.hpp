@@ -4,10 +4,15 @@
 // shape); the first bending mode is followed by mode continuity, i.e. the
 // mode with the largest MAC against the previous shape, not by sorting.
 // At the first call the lowest mode with omega^2 > 0 is taken.
+// After the first analysis the modes are refined from the previous ones
+// (mode_refinement.hpp) instead of solved afresh; the full solve runs at the
+// first analysis, after a restart, when refinement fails (said once), and at
+// every analysis with fullSolve (-boom_tracking_full).
 #pragma once
 
 #include "boomdyn/state_archive.hpp"
 #include "boomdyn/eigen_solver.hpp"
+#include "boomdyn/mode_refinement.hpp"
 #include "boomdyn/petsc_handle.hpp"
 
 namespace boomdyn {
@@ -19,20 +24,35 @@ struct TrackedModes {
   double mac = 1;                  // MAC of the followed mode against the previous one (1 at the start)
   int index = 0;                   // its position in frequencyHz
   std::vector<double> shape;       // its shape (rank 0), max-norm 1
+  bool refined = false;            // from refinement (false: full eigen-solve)
 };
 
 class FrequencyTracker {
 public:
-  FrequencyTracker(Assembler &assembler, int count) : assembler_(assembler), count_(count) {}
+  FrequencyTracker(Assembler &assembler, int count, bool fullSolve = false)
+    : assembler_(assembler), count_(count), fullSolve_(fullSolve), refiner_(assembler)
+  {
+  }
 
   PetscErrorCode analyze(double t, Vec q, Vec lambda, TrackedModes *out);
   // The followed shape and eigenvalue, for checkpoints.
   PetscErrorCode save(StateWriter &out) const;
   PetscErrorCode restore(const StateReader &in);
 
+  // The modes of the last analysis, all m = count + guard Ritz vectors
+  // (empty after a full solve with fullSolve); for tests.
+  const std::vector<PetscHandle<Vec>> &basis() const { return basis_; }
+
 private:
+  // Full eigen-solve for nev pairs; basis_ = their vectors; the first count_ reported.
+  PetscErrorCode solveFully(double t, Vec q, Vec lambda, double target, Vec guess, std::vector<double> *omega2);
+
   Assembler &assembler_;
   int count_;
+  bool fullSolve_;
+  ModeRefiner refiner_;
+  std::vector<PetscHandle<Vec>> basis_; // the last analysis' vectors (refinement's start)
+  bool fallbackReported_ = false;
   PetscHandle<Vec> previous_; // the followed shape (none before the first analysis)
   double previousOmega2_ = 0;
 };

@@ -39,6 +39,7 @@ struct SimulationOptions {
   bool modal = true;              // run the scene's modal analysis (modal: block)
   bool quiet = false;             // no status lines (warnings and events are printed anyway)
   bool warnings = true;           // print the mesh conditioning warnings
+  bool trackingFullSolve = false; // tracking: full eigen-solve at every analysis (no refinement)
 };
 
 class Simulation {

@@ -22,19 +22,75 @@ struct PetscDestroyer<EPS> {
   static PetscErrorCode destroy(EPS *eps) { return EPSDestroy(eps); }
 };
 
-PetscErrorCode solveModes(Assembler &assembler, double t, Vec q, Vec lambda, int count, ModalResult *result,
-                          const ModalOptions &options)
+namespace {
+
+// Which converged pairs are modes, in ascending order of omega^2. Rejected,
+// each with a reason: a non-finite omega^2; an infinite eigenvalue of the
+// constraint rows that leaked through the transform (its operator eigenvalue
+// theta = 1/(omega^2 - target) is at round-off level against the largest
+// |theta|, i.e. |omega^2| ~ 1e36); a clearly negative omega^2 (below
+// -1e-8 of the largest accepted one: rigid-body modes at round-off level stay).
+std::vector<PetscInt> acceptFinitePairs(const std::vector<PetscScalar> &values, double target,
+                                        std::vector<std::string> *rejected)
+{
+  double thetaMax = 0;
+  for (PetscScalar w : values)
+    if (std::isfinite(w) && w != target) thetaMax = std::max(thetaMax, 1.0 / std::abs(w - target));
+  std::vector<PetscInt> finite;
+  double scale = 0;
+  char line[256];
+  for (PetscInt i = 0; i < (PetscInt)values.size(); ++i) {
+    const double w = values[i];
+    if (!std::isfinite(w)) {
+      std::snprintf(line, sizeof line, "eigenvalue %g is not finite", w);
+      rejected->push_back(line);
+    } else if (w != target && 1.0 / std::abs(w - target) < 1e-12 * thetaMax) {
+      std::snprintf(line, sizeof line,
+                    "omega^2 = %.3g rad^2/s^2 is an infinite eigenvalue of the constraint rows (spurious)", w);
+      rejected->push_back(line);
+    } else {
+      finite.push_back(i);
+      scale = std::max(scale, w);
+    }
+  }
+  std::vector<PetscInt> order;
+  for (PetscInt i : finite) {
+    if (values[i] < -1e-8 * scale) {
+      std::snprintf(line, sizeof line,
+                    "omega^2 = %.6g rad^2/s^2 is negative: the state is not a stable equilibrium (or the pair is "
+                    "spurious)", (double)values[i]);
+      rejected->push_back(line);
+    } else {
+      order.push_back(i);
+    }
+  }
+  std::sort(order.begin(), order.end(), [&](PetscInt a, PetscInt b) { return values[a] < values[b]; });
+  return order;
+}
+
+// The first five rejections of a process: tracking analyses many states.
+PetscErrorCode reportRejected(MPI_Comm comm, const std::string &why)
+{
+  static int reported = 0;
+  PetscFunctionBeginUser;
+  if (reported++ < 5)
+    PetscCall(PetscPrintf(comm, "warning: eigen-analysis: pair not reported as a mode: %s%s\n", why.c_str(),
+                          reported == 5 ? " (further rejections not shown)" : ""));
+  PetscFunctionReturn(0);
+}
+
+} // namespace
+
+PetscInt finiteModeBound(const Model &model)
+{
+  return model.numCoordinates() - model.numMultipliers() - static_cast<PetscInt>(model.firstOrderCoordinates().size());
+}
+
+PetscErrorCode assemblePencil(Assembler &assembler, double t, Vec q, Vec lambda, Mat A, Mat B)
 {
   const PetscInt nq = assembler.model().numCoordinates();
-  // Owned by handles: an error (an eigenpair that did not converge) leaks nothing.
-  PetscHandle<Mat> A, B;
-  PetscHandle<Vec> x, xr, gathered, zero;
-  PetscHandle<EPS> eps;
-  PetscHandle<VecScatter> toZero;
-  ST st;
-  KSP ksp;
+  PetscHandle<Vec> x;
   PetscFunctionBeginUser;
-  PetscCall(PetscLogEventBegin(logEvents().eigen, 0, 0, 0, 0));
   // x = [q | lambda / sigma]. The constraint blocks are scaled by sigma, a
   // typical stiffness diagonal: with sigma = 1 they are ~1e-9 of K for steel
   // booms and MUMPS's threshold pivoting declares A - target B singular.
@@ -60,8 +116,6 @@ PetscErrorCode solveModes(Assembler &assembler, double t, Vec q, Vec lambda, int
   ctx.t = t;
   ctx.sigma = sigma;
   PetscCall(assembler.setOffsets(nullptr, nullptr, nullptr));
-  PetscCall(assembler.createMatrix(A.address()));
-  PetscCall(assembler.createMatrix(B.address()));
   ctx.kin = {1.0, 0.0, 0.0};
   PetscCall(assembler.evaluate(ctx, x, nullptr, A));
   // B: the same pattern as A (explicit zeros), so ST can combine them cheaply.
@@ -70,12 +124,72 @@ PetscErrorCode solveModes(Assembler &assembler, double t, Vec q, Vec lambda, int
   PetscCall(assembler.setOffsets(x, nullptr, nullptr)); // q = x (cQ = 0), so every kernel sees the real state
   PetscCall(assembler.evaluate(ctx, x, nullptr, B));
 
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode gatherShape(Assembler &assembler, Vec v, std::vector<double> *shape)
+{
+  PetscHandle<VecScatter> toZero;
+  PetscHandle<Vec> gathered;
+  PetscMPIInt rank;
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_rank(assembler.comm(), &rank));
+  PetscCall(VecScatterCreateToZero(v, toZero.address(), gathered.address()));
+  PetscCall(scatterValues(toZero, v, gathered, *shape));
+  if (rank == 0) {
+    shape->resize(assembler.model().numCoordinates());
+    double big = 0;
+    for (double s : *shape)
+      if (std::abs(s) > std::abs(big)) big = s;
+    if (big != 0)
+      for (double &s : *shape) s /= big;
+  } else {
+    shape->clear();
+  }
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode solveModes(Assembler &assembler, double t, Vec q, Vec lambda, int count, ModalResult *result,
+                          const ModalOptions &options)
+{
+  const PetscInt nq = assembler.model().numCoordinates();
+  // Owned by handles: an error (an eigenpair that did not converge) leaks nothing.
+  PetscHandle<Mat> A, B;
+  PetscHandle<Vec> xr, gathered, zero;
+  PetscHandle<EPS> eps;
+  PetscHandle<VecScatter> toZero;
+  ST st;
+  KSP ksp;
+  PetscFunctionBeginUser;
+  PetscCall(PetscLogEventBegin(logEvents().eigen, 0, 0, 0, 0));
+  PetscCall(assembler.createMatrix(A.address()));
+  PetscCall(assembler.createMatrix(B.address()));
+  PetscCall(assemblePencil(assembler, t, q, lambda, A, B));
+
+  // Only finite eigenvalues are modes. The pencil has n - nf infinite ones
+  // (a multiplier and the coordinate direction it fixes per constraint row,
+  // and every first-order state), with nf = nq - nconstraint - nfirstorder.
+  // Once the Krylov subspace is larger than nf, shift-and-invert can only
+  // fill it with directions of those infinite eigenvalues (operator
+  // eigenvalue theta = 0, shifted back to omega^2 ~ +-1e36), and such a pair
+  // passes every residual test: seen on cantilevers of 2-3 elements, where
+  // the default ncv = nev + 15 exceeds nf. So ncv <= nf (issue 13, item 3).
+  const PetscInt finiteBound = finiteModeBound(assembler.model());
+  PetscCheck(count <= finiteBound, assembler.comm(), PETSC_ERR_USER_INPUT,
+             "eigen-analysis: %d modes requested, but the model has at most %" PetscInt_FMT
+             " finite modes (%" PetscInt_FMT " coordinates - %" PetscInt_FMT " constraint rows - %" PetscInt_FMT
+             " first-order states); ask for fewer modes (modal: count, tracking: count)",
+             count, finiteBound, nq, assembler.model().numMultipliers(),
+             static_cast<PetscInt>(assembler.model().firstOrderCoordinates().size()));
+
   PetscCall(EPSCreate(assembler.comm(), eps.address()));
   PetscCall(EPSSetOptionsPrefix(eps, "modal_"));
   PetscCall(EPSSetOperators(eps, A, B));
   PetscCall(EPSSetProblemType(eps, EPS_GHEP));
   PetscCall(EPSSetType(eps, EPSKRYLOVSCHUR));
-  PetscCall(EPSSetDimensions(eps, count, PETSC_DEFAULT, PETSC_DEFAULT));
+  // B-orthogonal projection of the computed vectors (one more application
+  // of the operator): removes what is left of the null space of B.
+  PetscCall(EPSSetPurify(eps, PETSC_TRUE));
   PetscCall(EPSSetTolerances(eps, 1e-12, 500));
   // A slightly negative target keeps A - target B nonsingular when the
   // mechanism has rigid-body modes (omega = 0).
@@ -89,19 +203,33 @@ PetscErrorCode solveModes(Assembler &assembler, double t, Vec q, Vec lambda, int
   PetscCall(STSetType(st, STSINVERT));
   PetscCall(STGetKSP(st, &ksp));
   PetscCall(useDirectSolver(ksp));
-  PetscCall(EPSSetFromOptions(eps));
-  PetscCall(EPSSolve(eps));
-  PetscInt nconv;
-  PetscCall(EPSGetConverged(eps, &nconv));
-  PetscCheck(nconv >= count, assembler.comm(), PETSC_ERR_NOT_CONVERGED,
-             "eigen-analysis: %" PetscInt_FMT " of %d eigenpairs converged", nconv, count);
 
-  // Order by eigenvalue (SLEPc returns them by distance to the target).
-  std::vector<PetscScalar> values(nconv);
-  for (PetscInt i = 0; i < nconv; ++i) PetscCall(EPSGetEigenpair(eps, i, &values[i], nullptr, nullptr, nullptr));
-  std::vector<PetscInt> order(nconv);
-  std::iota(order.begin(), order.end(), 0);
-  std::sort(order.begin(), order.end(), [&](PetscInt a, PetscInt b) { return values[a] < values[b]; });
+  // Solve for nev pairs; keep the finite, non-negative ones; if fewer than
+  // `count` remain, ask for more (never beyond nf).
+  std::vector<PetscInt> order; // accepted pairs, ascending omega^2
+  std::vector<PetscScalar> values;
+  for (PetscInt nev = count;;) {
+    // Krylov-Schur needs ncv > nev: with nev = nf one infinite direction
+    // enters, and acceptFinitePairs() drops it.
+    const PetscInt ncv = std::max(std::min(std::max(2 * nev, nev + 15), finiteBound), nev + 1);
+    PetscCall(EPSSetDimensions(eps, nev, ncv, PETSC_DEFAULT));
+    PetscCall(EPSSetFromOptions(eps));
+    PetscCall(EPSSolve(eps));
+    PetscInt nconv;
+    PetscCall(EPSGetConverged(eps, &nconv));
+    PetscCheck(nconv >= count, assembler.comm(), PETSC_ERR_NOT_CONVERGED,
+               "eigen-analysis: %" PetscInt_FMT " of %d eigenpairs converged", nconv, count);
+    values.assign(nconv, 0.0);
+    for (PetscInt i = 0; i < nconv; ++i) PetscCall(EPSGetEigenpair(eps, i, &values[i], nullptr, nullptr, nullptr));
+    std::vector<std::string> rejected;
+    order = acceptFinitePairs(values, options.target, &rejected);
+    for (const std::string &why : rejected) PetscCall(reportRejected(assembler.comm(), why));
+    if ((PetscInt)order.size() >= count) break;
+    PetscCheck(nev < finiteBound, assembler.comm(), PETSC_ERR_NOT_CONVERGED,
+               "eigen-analysis: only %zu finite, non-negative eigenvalues of %d requested were found (%zu rejected)",
+               order.size(), count, rejected.size());
+    nev = std::min(finiteBound, nev + count - (PetscInt)order.size() + 1);
+  }
 
   PetscMPIInt rank;
   PetscCallMPI(MPI_Comm_rank(assembler.comm(), &rank));

@@ -139,6 +139,9 @@ PetscErrorCode readRunOptions(PetscOptionItems *PetscOptionsObject, AppOptions *
   std::string partition = "contiguous";
   PetscCall(optionString(PetscOptionsObject, "-boom_partition",
                          "Which rank evaluates which work item: contiguous or metis", &partition));
+  PetscCall(optionBool(PetscOptionsObject, "-boom_tracking_full",
+                       "Frequency tracking: a full eigen-solve at every analysis instead of refining the previous modes",
+                       &o->trackingFull));
   PetscCall(optionNumber(PetscOptionsObject, "-boom_error_wait",
                          "Seconds a rank that failed alone waits for the others before it aborts the job",
                          &o->errorWait));

@@ -30,6 +30,7 @@ struct AppOptions {
   PetscInt partitionParts = 0;
   double errorWait = 30;         // -boom_error_wait (s), in [0, 1 day]
   bool allowUnused = false;      // -boom_allow_unused: unused options are warnings
+  bool trackingFull = false;     // -boom_tracking_full: full eigen-solve at every tracking analysis
   bool help = false;             // -help: options listed, no run without a scene
 };
 

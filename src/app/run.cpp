@@ -94,6 +94,7 @@ PetscErrorCode runScene(const Scene &scene, const AppOptions &opts, int argc, ch
   std::unique_ptr<Simulation> sim;
   PetscFunctionBeginUser;
   options.energyTolerance = opts.energyTolerance;
+  options.trackingFullSolve = opts.trackingFull;
   options.adaptiveTolerance = opts.adaptiveTolerance;
   options.restartPath = opts.restartPath;
   options.quiet = opts.quiet;

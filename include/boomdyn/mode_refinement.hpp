@@ -1,0 +1,49 @@
+// Cheap re-analysis of modes along a run (issue 18, item 2; docs/model.md §5
+// "Refinement"). Between two tracking analyses the state changes little, so
+// the modes of the last analysis are a nearly invariant subspace of the new
+// pencil. Instead of a fresh Krylov-Schur solve, they are refined by subspace
+// iteration with shift-and-invert and Rayleigh-Ritz:
+//     W = (A - tau B)^{-1} B V,   (W^T A W) y = theta (W^T B W) y,   V <- W Y,
+// until every wanted Ritz pair has ||A x - theta B x|| <= tol ||A x||.
+// The pencil's matrices and the factorization of A - tau B are kept between
+// analyses: while the sparsity pattern holds (no contact point changed
+// element) only the values are assembled and refactored numerically.
+#pragma once
+
+#include "boomdyn/eigen_solver.hpp"
+#include "boomdyn/petsc_handle.hpp"
+
+#include <vector>
+
+namespace boomdyn {
+
+struct RefinedModes {
+  std::vector<double> omega2;              // the `count` lowest Ritz values, ascending
+  double worstResidual = 0;                // max of ||A x - w B x|| / ||A x|| over them
+  int iterations = 0;
+};
+
+class ModeRefiner {
+public:
+  explicit ModeRefiner(Assembler &assembler) : assembler_(assembler) {}
+
+  // basis: the m >= count vectors (layout of x) of the previous analysis. On
+  // success (*converged) they are replaced by the new Ritz vectors in
+  // ascending order of omega^2, B-orthonormal; the first `count` are the modes.
+  PetscErrorCode refine(double t, Vec q, Vec lambda, double target, int count, std::vector<PetscHandle<Vec>> &basis,
+                        RefinedModes *out, bool *converged);
+
+  double tolerance = 1e-9; // relative residual every reported pair must reach
+  int maxIterations = 10;
+
+private:
+  // A, B at the state and the factorization of A - target B.
+  PetscErrorCode prepare(double t, Vec q, Vec lambda, double target, bool *factored);
+
+  Assembler &assembler_;
+  PetscHandle<Mat> A_, B_, S_;
+  PetscHandle<KSP> ksp_;
+  int pattern_ = -1;
+};
+
+} // namespace boomdyn
