@@ -19,6 +19,8 @@ struct SectionSpec {
   double EA = 0;   // axial stiffness, N
   double EI = 0;   // bending stiffness, N m^2
   double rhoA = 0; // mass per length, kg/m
+  // Kelvin-Voigt retardation times of axial strain and curvature, s (flexible bodies; 0: undamped)
+  double etaAxial = 0, etaBending = 0;
 };
 
 // A body as its type (src/bodies/*_type.cpp) describes it after reading,
