@@ -45,6 +45,9 @@ struct DynamicSpec {
   double dt_min = 1e-9;   // s; a step cut below this stops the run
   double rho_inf = 0.8;   // spectral radius at infinity, in [0, 1]
   int max_newton = 25;
+  // initial: static — start from the static equilibrium under the loads and
+  // drives at t = 0 (at rest) instead of the undeformed state.
+  bool startStatic = false;
 };
 
 struct StaticSpec {

@@ -78,6 +78,7 @@ private:
   PetscErrorCode runDynamic(const std::function<bool()> &stop);
   PetscErrorCode runStatic();
   PetscErrorCode restore(RunState *state);
+  PetscErrorCode staticInitialState(); // dynamic.initial: static
   PetscErrorCode dynamicState(RunState *state);
   PetscErrorCode afterStep(const RunState &state, std::string *failure);
   PetscErrorCode finish(const RunState &state);
