@@ -19,6 +19,9 @@ using Mat28 = Eigen::Matrix<double, 2, 8>;
 
 struct Section {
   double EA = 0, EI = 0, rhoA = 0;
+  // Kelvin-Voigt retardation times (s): N = EA (eps + etaA eps'), M = EI (K + etaB K').
+  double etaA = 0, etaB = 0;
+  bool damped() const { return etaA > 0 || etaB > 0; }
 };
 
 // Shape function values S1..S4 and their x-derivatives (order 0..3) at xi.
@@ -38,6 +41,14 @@ Vec8 gravityForce(double rhoA, double l, const Vec2 &g);
 double strainEnergy(const Section &sec, double l, const Vec8 &e);
 // Internal force f = dU/de and, if K != nullptr, tangent K = d^2U/de^2.
 void internalForce(const Section &sec, double l, const Vec8 &e, Vec8 &f, Mat8 *K);
+
+// Kelvin-Voigt damping force (docs/model.md §1.1, "Material damping")
+//   fd = ∫ [EA etaA epsdot deps/de + EI etaB Kdot dK/de] dx,  epsdot = deps/de . edot,
+// added to f like the internal force. Returns the dissipated power
+// edot . fd = ∫ EA etaA epsdot^2 + EI etaB Kdot^2 dx >= 0. If Kq != nullptr it
+// receives dfd/de (not symmetric), if Dv != nullptr dfd/dedot (symmetric,
+// positive semi-definite). fd may alias e or edot.
+double dampingForce(const Section &sec, double l, const Vec8 &e, const Vec8 &edot, Vec8 &fd, Mat8 *Kq, Mat8 *Dv);
 
 // Axial strain and material curvature at xi (for output and tests).
 double axialStrain(const Vec8 &e, double xi, double l);

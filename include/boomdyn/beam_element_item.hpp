@@ -1,5 +1,6 @@
 // One ANCF element of a beam as an assembly work item: inertia, elastic
-// forces and gravity with their Jacobian cA M + cQ K.
+// forces, Kelvin-Voigt damping and gravity with their Jacobian
+// cA M + cV D + cQ (K + dfd/dq).
 #pragma once
 
 #include "boomdyn/ancf_beam.hpp"
@@ -20,6 +21,9 @@ public:
   void scales(const ItemValues &in, double &massDiag, double &stiffDiag, int &count) const override;
 
 private:
+  // Kelvin-Voigt damping force into the residual, D (times cV) and dfd/dq (times cQ) into J.
+  void addDamping(const AssemblyContext &ctx, const ItemValues &in, double *residual, double *J) const;
+
   const AncfBeam *beam_;
   int element_;
   std::shared_ptr<const ancf::Mat8> mass_;

@@ -19,6 +19,8 @@ struct SectionSpec {
   double EA = 0;   // axial stiffness, N
   double EI = 0;   // bending stiffness, N m^2
   double rhoA = 0; // mass per length, kg/m
+  // Kelvin-Voigt retardation times of axial strain and curvature, s (flexible bodies; 0: undamped)
+  double etaAxial = 0, etaBending = 0;
 };
 
 // A body as its type (src/bodies/*_type.cpp) describes it after reading,
@@ -43,6 +45,9 @@ struct DynamicSpec {
   double dt_min = 1e-9;   // s; a step cut below this stops the run
   double rho_inf = 0.8;   // spectral radius at infinity, in [0, 1]
   int max_newton = 25;
+  // initial: static — start from the static equilibrium under the loads and
+  // drives at t = 0 (at rest) instead of the undeformed state.
+  bool startStatic = false;
 };
 
 struct StaticSpec {

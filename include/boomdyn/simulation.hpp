@@ -80,6 +80,7 @@ private:
   PetscErrorCode runDynamic(const std::function<bool()> &stop);
   PetscErrorCode runStatic(const std::function<bool()> &stop);
   PetscErrorCode restore(RunState *state);
+  PetscErrorCode staticInitialState(); // dynamic.initial: static
   PetscErrorCode dynamicState(RunState *state);
   PetscErrorCode afterStep(const RunState &state, std::string *failure);
   PetscErrorCode finish(const RunState &state);

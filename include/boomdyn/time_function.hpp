@@ -9,7 +9,7 @@ namespace boomdyn {
 
 class TimeFunction {
 public:
-  enum class Kind { Constant, Ramp, SmoothStep, Table, Sine };
+  enum class Kind { Constant, Ramp, SmoothStep, Table, Sine, AccelLimited };
 
   TimeFunction() = default; // constant 0
 
@@ -25,6 +25,18 @@ public:
   // offset + amplitude sin(2 pi frequency (t - t0) + phase) for t >= t0, offset + amplitude sin(phase) before.
   static TimeFunction sine(double amplitude, double frequency, double phase, double offset, double t0 = 0.0);
 
+  // A point-to-point move from `from` (until t0) to `to` whose rate rises
+  // from 0 with at most `accel`, cruises at most at `speed` and falls back
+  // to 0 with at most `accel`: a trapezoidal rate profile (or triangular
+  // when the distance is too short to reach `speed`). With jerk > 0 the
+  // acceleration itself rises and falls at most at that rate (S-curve: f''
+  // continuous); jerk = 0 means unlimited (f'' jumps between 0 and
+  // +-accel). speed, accel > 0, jerk >= 0 (throws std::invalid_argument
+  // otherwise). endTime() tells when it arrives.
+  static TimeFunction accelLimited(double t0, double from, double to, double speed, double accel, double jerk = 0.0);
+  // The end of a ramp, smooth step or accel-limited move (t0 for the others).
+  double endTime() const { return t1_; }
+
   double value(double t) const;
   double rate(double t) const;  // df/dt
   double accel(double t) const; // d2f/dt2
@@ -39,6 +51,16 @@ private:
   Kind kind_ = Kind::Constant;
   double t0_ = 0, t1_ = 0, v0_ = 0, v1_ = 0;
   double amplitude_ = 0, frequency_ = 0, phase_ = 0;
+  // AccelLimited: the move's shape on its distance (>= 0), times amplitude_ (+-1, scaled).
+  struct Move {
+    double peakSpeed = 0, peakAccel = 0, jerk = 0; // reached values; jerk 0: unlimited
+    double accelTime = 0, jerkTime = 0;            // length of the speed-up phase and of its jerk parts
+    double distance = 0;                           // |to - from|
+  } move_;
+  // Position, rate and acceleration along the move at time tau after t0.
+  void moveState(double tau, double out[3]) const;
+  // The speed-up phase (0 <= tau <= accelTime): distance, rate, acceleration.
+  void speedUp(double tau, double out[3]) const;
   std::vector<double> times_, values_;
 };
 

@@ -54,6 +54,9 @@ struct EnergyParts {
   // Rate at which the explicit time dependence of loads and driven
   // constraints feeds energy in (W): dE/dt = inputPower - dissipation.
   double inputPower = 0;
+  // Power dissipated by material damping (W, >= 0): edot . fd of the
+  // Kelvin-Voigt forces (docs/model.md §1.1).
+  double dissipation = 0;
   // Size of the round-off in these sums (J): the strain energy of a short
   // element comes from differences of nodal values of size |q| over its
   // length, so it carries an error that grows like |q|^2 / l^3 (bending).

@@ -28,7 +28,7 @@ std::optional<SpecIssue> checkAncfBeam(const ComponentSpec &spec, const Scene &)
 
 void buildAncfBeam(const BodySpec &b, BodyBuilder &builder)
 {
-  const ancf::Section sec{b.section.EA, b.section.EI, b.section.rhoA};
+  const ancf::Section sec{b.section.EA, b.section.EI, b.section.rhoA, b.section.etaAxial, b.section.etaBending};
   auto owned = std::make_unique<AncfBeam>(b.name, b.length, b.elements, sec, Vec2(b.origin[0], b.origin[1]), b.angle,
                                           builder.firstCoordinate());
   const AncfBeam &beam = *owned;

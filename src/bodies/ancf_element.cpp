@@ -48,6 +48,19 @@ inline Vec8 expand(const Eigen::Vector4d &s, const Vec2 &v)
 // Rotated vector W v with a x b = a^T W b, i.e. W v = (v_y, -v_x).
 inline Vec2 rotCW(const Vec2 &v) { return Vec2(v.y(), -v.x()); }
 
+// Add (P ⊗ I) + (Q ⊗ W), W = [[0, 1], [-1, 0]], to an 8x8 matrix: the
+// Hessians of the axial strain and of r' x r'' are of these forms.
+void addKronecker(const Eigen::Matrix4d &P, const Eigen::Matrix4d &Q, Mat8 &M)
+{
+  for (int a = 0; a < 4; ++a)
+    for (int b = 0; b < 4; ++b) {
+      M(2 * a, 2 * b) += P(a, b);
+      M(2 * a + 1, 2 * b + 1) += P(a, b);
+      M(2 * a, 2 * b + 1) += Q(a, b);
+      M(2 * a + 1, 2 * b) -= Q(a, b);
+    }
+}
+
 } // namespace
 
 Eigen::Vector4d shapeValues(double xi, double l, int derivative)
@@ -177,15 +190,57 @@ void internalForce(const Section &sec, double l, const Vec8 &e, Vec8 &f, Mat8 *K
     Q.noalias() += (wx * b) * (s1 * s2.transpose() - s2 * s1.transpose());
   }
   f = fl;
-  if (!Kt) return;
-  // Expand: (P ⊗ I) + (Q ⊗ W) with W = [[0, 1], [-1, 0]].
-  for (int a = 0; a < 4; ++a)
-    for (int b = 0; b < 4; ++b) {
-      (*Kt)(2 * a, 2 * b) += P(a, b);
-      (*Kt)(2 * a + 1, 2 * b + 1) += P(a, b);
-      (*Kt)(2 * a, 2 * b + 1) += Q(a, b);
-      (*Kt)(2 * a + 1, 2 * b) -= Q(a, b);
+  if (Kt) addKronecker(P, Q, *Kt);
+}
+
+double dampingForce(const Section &sec, double l, const Vec8 &e, const Vec8 &edot, Vec8 &fd, Mat8 *Kq, Mat8 *Dv)
+{
+  const GaussRule &g = gaussRule();
+  Vec8 fl = Vec8::Zero(); // local accumulator: fd may alias e or edot
+  double power = 0;
+  // With g_e = deps/de, g_K = dK/de and their Hessians H_e = (s1 s1^T) ⊗ I,
+  // H_K = (H_c - 2 K H_e - 2 (g_e g_K^T + g_K g_e^T)) / J2, the rates are
+  // epsdot = g_e . edot, Kdot = g_K . edot, and per Gauss point
+  //   fd    = ca epsdot g_e + cb Kdot g_K                   (ca = wx EA etaA, cb = wx EI etaB)
+  //   dfd/dedot = ca g_e g_e^T + cb g_K g_K^T
+  //   dfd/de    = ca (g_e h_e^T + epsdot H_e) + cb (g_K h_K^T + Kdot H_K),  h = H edot.
+  Eigen::Matrix4d P, Q;
+  if (Kq) P.setZero(), Q.setZero(), Kq->setZero();
+  if (Dv) Dv->setZero();
+  for (int p = 0; p < kGaussPoints; ++p) {
+    const Eigen::Vector4d s1 = shapeValues(g.xi[p], l, 1), s2 = shapeValues(g.xi[p], l, 2);
+    Vec2 r1 = Vec2::Zero(), r2 = Vec2::Zero(), r1d = Vec2::Zero(), r2d = Vec2::Zero();
+    for (int k = 0; k < 4; ++k) {
+      r1 += s1[k] * e.segment<2>(2 * k);
+      r2 += s2[k] * e.segment<2>(2 * k);
+      r1d += s1[k] * edot.segment<2>(2 * k);
+      r2d += s2[k] * edot.segment<2>(2 * k);
     }
+    const double wx = g.w[p] * l;
+    const double ca = wx * sec.EA * sec.etaA, cb = wx * sec.EI * sec.etaB;
+    const double iJ2 = 1.0 / r1.squaredNorm();
+    const double K = cross(r1, r2) * iJ2;
+    const double epsdot = r1.dot(r1d);
+    const double Kdot = (cross(r1d, r2) + cross(r1, r2d) - 2.0 * K * epsdot) * iJ2;
+    const Vec8 gE = expand(s1, r1);
+    const Vec8 gK = (expand(s1, rotCW(r2)) - expand(s2, rotCW(r1)) - 2.0 * K * gE) * iJ2;
+    fl += (ca * epsdot) * gE + (cb * Kdot) * gK;
+    power += ca * epsdot * epsdot + cb * Kdot * Kdot;
+    if (Dv) Dv->noalias() += ca * gE * gE.transpose() + cb * gK * gK.transpose();
+    if (!Kq) continue;
+    const Vec8 hE = expand(s1, r1d);
+    const Vec8 hK = (expand(s1, rotCW(r2d)) - expand(s2, rotCW(r1d)) - 2.0 * K * hE - 2.0 * Kdot * gE -
+                     2.0 * epsdot * gK) *
+                    iJ2;
+    const double bd = cb * Kdot * iJ2;
+    Kq->noalias() += ca * gE * hE.transpose() + cb * gK * hK.transpose() -
+                     (2.0 * bd) * (gE * gK.transpose() + gK * gE.transpose());
+    P.noalias() += (ca * epsdot - 2.0 * bd * K) * s1 * s1.transpose();
+    Q.noalias() += bd * (s1 * s2.transpose() - s2 * s1.transpose());
+  }
+  fd = fl;
+  if (Kq) addKronecker(P, Q, *Kq);
+  return power;
 }
 
 Vec8 straightElement(const Vec2 &p0, const Vec2 &dir, double l)

@@ -24,17 +24,38 @@ void BeamElementItem::evaluate(const AssemblyContext &ctx, const ItemValues &in,
 {
   const Eigen::Map<const ancf::Vec8> q(in.q), a(in.a);
   Eigen::Map<ancf::Vec8> r(residual);
+  const ancf::Section &sec = beam_->section();
+  const double l = beam_->elementLength();
   ancf::Vec8 f;
   if (J && ctx.kin.cQ != 0.0) {
     ancf::Mat8 K;
-    ancf::internalForce(beam_->section(), beam_->elementLength(), q, f, &K);
+    ancf::internalForce(sec, l, q, f, &K);
     Eigen::Map<Eigen::Matrix<double, 8, 8, Eigen::RowMajor>> Jm(J);
     Jm = ctx.kin.cA * (*mass_) + ctx.kin.cQ * K;
   } else {
-    ancf::internalForce(beam_->section(), beam_->elementLength(), q, f, nullptr);
+    ancf::internalForce(sec, l, q, f, nullptr);
     if (J) Eigen::Map<Eigen::Matrix<double, 8, 8, Eigen::RowMajor>>{J} = ctx.kin.cA * (*mass_);
   }
   r = (*mass_) * a + f - ctx.loadFactor * gravity_;
+  // Undamped sections skip this entirely (no cost, results bit-identical).
+  if (sec.damped()) addDamping(ctx, in, residual, J);
+}
+
+void BeamElementItem::addDamping(const AssemblyContext &ctx, const ItemValues &in, double *residual, double *J) const
+{
+  const Eigen::Map<const ancf::Vec8> q(in.q), v(in.v);
+  Eigen::Map<ancf::Vec8> r(residual);
+  const ancf::Section &sec = beam_->section();
+  const double l = beam_->elementLength();
+  ancf::Vec8 fd;
+  const bool wantQ = J && ctx.kin.cQ != 0.0, wantV = J && ctx.kin.cV != 0.0;
+  ancf::Mat8 Kq, Dv;
+  ancf::dampingForce(sec, l, q, v, fd, wantQ ? &Kq : nullptr, wantV ? &Dv : nullptr);
+  r += fd;
+  if (!J) return;
+  Eigen::Map<Eigen::Matrix<double, 8, 8, Eigen::RowMajor>> Jm(J);
+  if (wantQ) Jm += ctx.kin.cQ * Kq;
+  if (wantV) Jm += ctx.kin.cV * Dv;
 }
 
 void BeamElementItem::energy(const AssemblyContext &ctx, const ItemValues &in, EnergyParts &e) const
@@ -44,6 +65,10 @@ void BeamElementItem::energy(const AssemblyContext &ctx, const ItemValues &in, E
   const ancf::Section &sec = beam_->section();
   const double l = beam_->elementLength(), u = ancf::strainEnergy(sec, l, q);
   e.strain += u;
+  if (sec.damped()) {
+    ancf::Vec8 fd;
+    e.dissipation += ancf::dampingForce(sec, l, q, v, fd, nullptr, nullptr);
+  }
   // Round-off of the curvature eps |q| / l^2 and of the axial strain eps |q| / l,
   // entering U = l (EA eps^2 + EI kappa^2) / 2 to first order through the
   // strain present and to second order on their own.

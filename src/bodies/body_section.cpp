@@ -28,6 +28,28 @@ TypeSchema schema(const std::string &bodyType, bool stiffness)
               sectionKey("A", "m^2", "cross-section area"),
               sectionKey("I", "m^4", "second moment of area about the axis normal to the plane (bending axis)"),
               sectionKey("rho", "kg/m^3", "density")};
+    // Kelvin-Voigt material damping (docs/model.md §1.1), in either form.
+    s.keys.push_back(key("eta_axial", ValueKind::Number, "s", Need::Optional,
+                         "retardation time of the axial strain: N = EA (eps + eta_axial deps/dt)")
+                         .nonNegative()
+                         .byDefault(0.0, "0 (undamped)"));
+    s.keys.push_back(key("eta_bending", ValueKind::Number, "s", Need::Optional,
+                         "retardation time of the curvature: M = EI (K + eta_bending dK/dt)")
+                         .nonNegative()
+                         .byDefault(0.0, "0 (undamped)"));
+    s.keys.push_back(key("damping_ratio", ValueKind::Number, "", Need::Optional,
+                         "instead of the eta keys: damping ratio zeta of the mode at `damping_frequency`; sets "
+                         "eta_axial = eta_bending = zeta / (pi f) (stiffness-proportional damping)")
+                         .nonNegative()
+                         .requiredWith("damping_frequency"));
+    s.keys.push_back(key("damping_frequency", ValueKind::Number, "Hz", Need::Optional,
+                         "the frequency f at which `damping_ratio` holds (the mode to be damped, e.g. the first)")
+                         .positive()
+                         .requiredWith("damping_ratio"));
+    for (const char *eta : {"eta_axial", "eta_bending"})
+      s.rules.push_back(forbidIfPresent("damping_ratio", eta,
+                                        "give the damping either as eta_axial/eta_bending or as damping_ratio at "
+                                        "damping_frequency, not both"));
     s.forms = {{"EA", "EI", "rhoA"}, {"E", "A", "I", "rho"}};
     s.formsText = "EA, EI, rhoA, or E, A, I, rho";
     return s;
@@ -37,6 +59,8 @@ TypeSchema schema(const std::string &bodyType, bool stiffness)
             sectionKey("rho", "kg/m^3", "density")};
   for (const char *k : {"EA", "EI", "E", "I"})
     s.rules.push_back(forbid(k, "a rigid body has no stiffness; give its mass per length: rhoA, or rho and A"));
+  for (const char *k : {"eta_axial", "eta_bending", "damping_ratio", "damping_frequency"})
+    s.rules.push_back(forbid(k, "a rigid body does not deform, so it has no material damping"));
   s.forms = {{"rhoA"}, {"A", "rho"}};
   s.formsText = "rhoA, or rho and A";
   return s;
@@ -62,9 +86,27 @@ std::optional<SpecIssue> checkProducts(const ComponentSpec &body, bool stiffness
   return std::nullopt;
 }
 
+namespace {
+
+// The Kelvin-Voigt retardation times: given, or from a damping ratio zeta at
+// f: zeta_n = eta omega_n / 2 for stiffness-proportional damping, so
+// eta = 2 zeta / (2 pi f) for both strains.
+void readDamping(const ComponentSpec &s, SectionSpec &out)
+{
+  if (s.has("damping_ratio")) {
+    out.etaAxial = out.etaBending = s.number("damping_ratio") / (M_PI * s.number("damping_frequency"));
+    return;
+  }
+  out.etaAxial = s.number("eta_axial");
+  out.etaBending = s.number("eta_bending");
+}
+
+} // namespace
+
 SectionSpec fromSpec(const ComponentSpec &s, bool stiffness)
 {
   SectionSpec out;
+  if (stiffness) readDamping(s, out);
   if (!s.has("rho")) {
     if (stiffness) out.EA = s.number("EA"), out.EI = s.number("EI");
     out.rhoA = s.number("rhoA");

@@ -280,8 +280,8 @@ TimeFunction CheckedYaml::timeFunction(const Field &f) const
     report_.fail(f, "expected a number or a time function map {type: ...}, got " + describeNode(f.node));
   const MapView m(report_, f,
                   {"type", "value", "t0", "t1", "from", "to", "t", "values", "amplitude", "frequency", "phase",
-                   "offset"});
-  const std::vector<std::string> types{"constant", "ramp", "smooth_step", "table", "sine"};
+                   "offset", "speed", "accel", "jerk"});
+  const std::vector<std::string> types{"constant", "ramp", "smooth_step", "table", "sine", "accel_limited"};
   const std::size_t type = choice(m.require("type", " (one of " + join(types) + ")"), types);
   // Each kind accepts only its own parameters.
   const std::vector<std::vector<std::string>> keys_of_type{
@@ -289,12 +289,14 @@ TimeFunction CheckedYaml::timeFunction(const Field &f) const
       {"t0", "t1", "from", "to"},
       {"t0", "t1", "from", "to"},
       {"t", "values"},
-      {"amplitude", "frequency", "phase", "offset", "t0"}};
+      {"amplitude", "frequency", "phase", "offset", "t0"},
+      {"t0", "from", "to", "speed", "accel", "jerk"}};
   for (const char *key : {"value", "t0", "t1", "from", "to", "t", "values", "amplitude", "frequency",
-                           "phase", "offset"}) {
+                           "phase", "offset", "speed", "accel", "jerk"}) {
     const auto &own = keys_of_type[type];
     if (std::find(own.begin(), own.end(), key) == own.end())
-      m.forbid(key, "not a parameter of a " + types[type] + " function (it takes " + join(own) + ")");
+      m.forbid(key, std::string("not a parameter of ") + (types[type][0] == 'a' ? "an " : "a ") + types[type] +
+                        " function (it takes " + join(own) + ")");
   }
   switch (type) {
   case 0:
@@ -326,6 +328,16 @@ TimeFunction CheckedYaml::timeFunction(const Field &f) const
         report_.fail(items[k], "times must be strictly increasing (t[" + std::to_string(k) + "] = " +
                                    numberText(t[k]) + " after " + numberText(t[k - 1]) + ")");
     return TimeFunction::table(t, v);
+  }
+  case 5: {
+    // A move from `from` to `to` starting at t0 (TimeFunction::accelLimited).
+    const double t0 = m.has("t0") ? number(*m.get("t0")) : 0.0;
+    const double from = m.has("from") ? number(*m.get("from")) : 0.0;
+    const double to = number(m.require("to", " (where the move ends)"));
+    const double speed = positive(m.require("speed", " (the largest rate, units of the value per second)"));
+    const double accel = positive(m.require("accel", " (the largest acceleration, units of the value per s^2)"));
+    const double jerk = m.has("jerk") ? positive(*m.get("jerk")) : 0.0;
+    return TimeFunction::accelLimited(t0, from, to, speed, accel, jerk);
   }
   default: {
     const double amplitude = number(m.require("amplitude"));

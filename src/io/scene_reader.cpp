@@ -113,7 +113,7 @@ void SceneParser::parse(const Field &root, Scene &scene)
 
 DynamicSpec SceneParser::parseDynamic(const Field &f) const
 {
-  const MapView m(report_, f, {"t_end", "dt", "dt_min", "rho_inf", "max_newton"});
+  const MapView m(report_, f, {"t_end", "dt", "dt_min", "rho_inf", "max_newton", "initial"});
   DynamicSpec d;
   d.t_end = positive(m.require("t_end"));
   const Field dt_field = m.require("dt");
@@ -134,6 +134,8 @@ DynamicSpec SceneParser::parseDynamic(const Field &f) const
   }
   if (const auto n = m.get("max_newton"))
     d.max_newton = integer(*n, 1, kMaxNewton);
+  if (const auto initial = m.get("initial"))
+    d.startStatic = choice(*initial, {"undeformed", "static"}) == 1;
   return d;
 }
 

@@ -247,9 +247,12 @@ PetscErrorCode Assembler::diagnostics(const AssemblyContext &ctx, Vec x, EnergyP
     items_[k]->energy(ctx, vals, e);
     viol = std::max(viol, items_[k]->constraintViolation(ctx, vals));
   }
-  double sums[5] = {e.kinetic, e.strain, e.potential, e.inputPower, e.roundoff}, global[5];
-  PetscCallMPI(MPI_Allreduce(sums, global, 5, MPI_DOUBLE, MPI_SUM, comm_));
-  if (energy) *energy = {global[0], global[1], global[2], global[3], global[4]};
+  double sums[6] = {e.kinetic, e.strain, e.potential, e.inputPower, e.roundoff, e.dissipation}, global[6];
+  PetscCallMPI(MPI_Allreduce(sums, global, 6, MPI_DOUBLE, MPI_SUM, comm_));
+  if (energy) {
+    energy->kinetic = global[0], energy->strain = global[1], energy->potential = global[2];
+    energy->inputPower = global[3], energy->roundoff = global[4], energy->dissipation = global[5];
+  }
   double gviol;
   PetscCallMPI(MPI_Allreduce(&viol, &gviol, 1, MPI_DOUBLE, MPI_MAX, comm_));
   if (maxViolation) *maxViolation = gviol;

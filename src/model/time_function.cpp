@@ -6,6 +6,8 @@
 //   SmoothStep: (t0_, v0_) -> (t1_, v1_)
 //   Table:      times_, values_
 //   Sine:       v0_ = offset, amplitude_, frequency_ (Hz), phase_ (rad), t0_
+//   AccelLimited: (t0_, v0_) -> (t1_, v1_), amplitude_ = +-1 (direction,
+//               times the factor of scaled()), move_ its shape on |v1 - v0|
 #include "boomdyn/time_function.hpp"
 
 #include <algorithm>
@@ -96,6 +98,104 @@ TimeFunction TimeFunction::sine(double amplitude, double frequency, double phase
   return f;
 }
 
+TimeFunction TimeFunction::accelLimited(double t0, double from, double to, double speed, double accel, double jerk)
+{
+  if (!std::isfinite(t0) || !std::isfinite(from) || !std::isfinite(to))
+    throw std::invalid_argument("TimeFunction::accelLimited: t0, from and to must be finite");
+  if (!(speed > 0) || !std::isfinite(speed))
+    throw std::invalid_argument("TimeFunction::accelLimited: speed must be > 0");
+  if (!(accel > 0) || !std::isfinite(accel))
+    throw std::invalid_argument("TimeFunction::accelLimited: accel must be > 0");
+  if (!(jerk >= 0) || !std::isfinite(jerk))
+    throw std::invalid_argument("TimeFunction::accelLimited: jerk must be >= 0 (0: unlimited)");
+  TimeFunction f;
+  f.kind_ = Kind::AccelLimited;
+  f.t0_ = f.t1_ = t0;
+  f.v0_ = from;
+  f.v1_ = to;
+  f.amplitude_ = to >= from ? 1.0 : -1.0;
+  Move &m = f.move_;
+  m.distance = std::abs(to - from);
+  m.jerk = jerk;
+  if (m.distance == 0) return f;
+  // The speed-up phase to a peak speed vp: with unlimited jerk it takes
+  // vp / accel; with jerk j the acceleration ramps up and down in accel / j
+  // each (or, below vp = accel^2 / j, never reaches accel: ap = sqrt(vp j)).
+  // The phase is point-symmetric about its middle, so it covers vp Ta / 2.
+  const auto shape = [&](double vp) {
+    m.peakSpeed = vp;
+    if (jerk == 0) {
+      m.peakAccel = accel, m.jerkTime = 0, m.accelTime = vp / accel;
+    } else if (vp * jerk >= accel * accel) {
+      m.peakAccel = accel, m.jerkTime = accel / jerk, m.accelTime = vp / accel + accel / jerk;
+    } else {
+      m.peakAccel = std::sqrt(vp * jerk), m.jerkTime = m.peakAccel / jerk, m.accelTime = 2.0 * m.jerkTime;
+    }
+  };
+  shape(speed);
+  if (m.peakSpeed * m.accelTime > m.distance) {
+    // Too short to reach `speed`: speed up and slow down without cruising,
+    // vp Ta(vp) = distance solved for vp.
+    double vp;
+    if (jerk == 0) {
+      vp = std::sqrt(accel * m.distance);
+    } else {
+      vp = std::cbrt(m.distance * m.distance * jerk / 4.0); // accel never reached
+      if (vp * jerk > accel * accel) {
+        const double c = accel / jerk;
+        vp = 0.5 * accel * (-c + std::sqrt(c * c + 4.0 * m.distance / accel));
+      }
+    }
+    shape(vp);
+  }
+  const double cruise = std::max(m.distance / m.peakSpeed - m.accelTime, 0.0);
+  f.t1_ = t0 + 2.0 * m.accelTime + cruise;
+  return f;
+}
+
+void TimeFunction::speedUp(double tau, double out[3]) const
+{
+  const Move &m = move_;
+  // First half: jerk segment (a = j tau), then constant acceleration.
+  const auto firstHalf = [&](double u, double r[3]) {
+    if (u < m.jerkTime) {
+      r[0] = m.jerk * u * u * u / 6.0, r[1] = 0.5 * m.jerk * u * u, r[2] = m.jerk * u;
+      return;
+    }
+    const double Tj = m.jerkTime, v1 = 0.5 * m.peakAccel * Tj, x1 = m.peakAccel * Tj * Tj / 6.0, w = u - Tj;
+    r[0] = x1 + v1 * w + 0.5 * m.peakAccel * w * w, r[1] = v1 + m.peakAccel * w, r[2] = m.peakAccel;
+  };
+  if (tau <= 0.5 * m.accelTime) {
+    firstHalf(tau, out);
+    return;
+  }
+  // Second half by point symmetry about (Ta/2, vp/2): v(tau) = vp - v(Ta - tau).
+  const double sigma = m.accelTime - tau;
+  double r[3];
+  firstHalf(sigma, r);
+  out[0] = 0.5 * m.peakSpeed * m.accelTime - (m.peakSpeed * sigma - r[0]);
+  out[1] = m.peakSpeed - r[1];
+  out[2] = r[2];
+}
+
+void TimeFunction::moveState(double tau, double out[3]) const
+{
+  const Move &m = move_;
+  const double total = t1_ - t0_;
+  if (tau <= 0 || m.distance == 0) {
+    out[0] = out[1] = out[2] = 0;
+  } else if (tau >= total) {
+    out[0] = m.distance, out[1] = out[2] = 0;
+  } else if (tau < m.accelTime) {
+    speedUp(tau, out);
+  } else if (tau < total - m.accelTime) { // right limits at the phase changes, like ramp and table
+    out[0] = 0.5 * m.peakSpeed * m.accelTime + m.peakSpeed * (tau - m.accelTime), out[1] = m.peakSpeed, out[2] = 0;
+  } else { // slowing down: the speed-up run backwards from the end
+    speedUp(total - tau, out);
+    out[0] = m.distance - out[0], out[2] = -out[2];
+  }
+}
+
 // For Ramp and Table the derivative at a knot is taken from the segment that
 // starts there (right derivative), so f'(t0) is the ramp slope and f'(t1) = 0.
 
@@ -134,6 +234,11 @@ double TimeFunction::value(double t) const
     const double tau = std::max(t - t0_, 0.0);
     return v0_ + amplitude_ * std::sin(kTwoPi * frequency_ * tau + phase_);
   }
+  case Kind::AccelLimited: {
+    double x[3];
+    moveState(t - t0_, x);
+    return v0_ + amplitude_ * x[0];
+  }
   }
   return 0.0;
 }
@@ -163,6 +268,11 @@ double TimeFunction::rate(double t) const
     const double w = kTwoPi * frequency_;
     return amplitude_ * w * std::cos(w * (t - t0_) + phase_);
   }
+  case Kind::AccelLimited: {
+    double x[3];
+    moveState(t - t0_, x);
+    return amplitude_ * x[1];
+  }
   }
   return 0.0;
 }
@@ -186,6 +296,11 @@ double TimeFunction::accel(double t) const
     const double w = kTwoPi * frequency_;
     return -amplitude_ * w * w * std::sin(w * (t - t0_) + phase_);
   }
+  case Kind::AccelLimited: {
+    double x[3];
+    moveState(t - t0_, x);
+    return amplitude_ * x[2];
+  }
   }
   return 0.0;
 }
@@ -195,7 +310,7 @@ TimeFunction TimeFunction::scaled(double factor) const
   TimeFunction f = *this;
   f.v0_ *= factor; // constant value, ramp/step start, sine offset
   f.v1_ *= factor;
-  f.amplitude_ *= factor;
+  f.amplitude_ *= factor; // sine amplitude; direction and units of an accel-limited move
   for (double &v : f.values_)
     v *= factor;
   return f;
@@ -218,6 +333,12 @@ std::string TimeFunction::describe() const
   case Kind::Sine:
     return "sine " + fmt(v0_) + " + " + fmt(amplitude_) + " sin(2 pi " + fmt(frequency_) + " Hz (t - " + fmt(t0_) +
            " s) + " + fmt(phase_) + " rad) for t >= " + fmt(t0_) + " s";
+  case Kind::AccelLimited: {
+    const double u = std::abs(amplitude_);
+    return "accel-limited move " + fmt(v0_) + " -> " + fmt(v1_) + " over t in [" + fmt(t0_) + ", " + fmt(t1_) +
+           "] s, peak rate " + fmt(u * move_.peakSpeed) + ", peak acceleration " + fmt(u * move_.peakAccel) +
+           (move_.jerk > 0 ? ", jerk " + fmt(u * move_.jerk) : std::string(", unlimited jerk"));
+  }
   }
   return "unknown";
 }

@@ -82,6 +82,7 @@ PetscErrorCode Simulation::runDynamic(const std::function<bool()> &stop)
                             options_.restartPath.c_str(), integrator_->time(), stepper_.steps));
   } else {
     stepper_ = StepperState{};
+    if (scene_.dynamic.startStatic) PetscCall(staticInitialState());
     // A mechanism without consistent accelerations is reported by exception.
     PetscErrorCode ierr = 0;
     PetscCallCXX(ierr = integrator_->initialize(0.0, x_, zero_));
@@ -137,6 +138,30 @@ PetscErrorCode Simulation::runDynamic(const std::function<bool()> &stop)
                             integrator_->multipliers()));
   }
   PetscCall(finish(state));
+  PetscFunctionReturn(0);
+}
+
+// initial: static. The equilibrium under the loads and drives at t = 0
+// replaces the undeformed state in x_; the run starts from it at rest, and
+// integrator_->initialize() adds the consistent accelerations (zero up to
+// the static solver's residual) and multipliers.
+PetscErrorCode Simulation::staticInitialState()
+{
+  PetscBool converged = PETSC_TRUE;
+  PetscInt lo, hi;
+  PetscScalar *a;
+  PetscFunctionBeginUser;
+  PetscCall(statics_->solve(0.0, 1, x_, nullptr, &converged));
+  PetscCheck(converged, comm_, PETSC_ERR_NOT_CONVERGED,
+             "%s: 'dynamic.initial: static': no static equilibrium found at t = 0 (%s); start from the undeformed state "
+             "(leave 'initial' out) or make the loads at t = 0 smaller",
+             scene_.file.c_str(), statics_->failure().c_str());
+  // The solver leaves scaled multipliers after the coordinates: the state is q only.
+  PetscCall(VecGetOwnershipRange(x_, &lo, &hi));
+  PetscCall(VecGetArray(x_, &a));
+  for (PetscInt i = std::max<PetscInt>(lo, model_.numCoordinates()); i < hi; ++i) a[i - lo] = 0.0;
+  PetscCall(VecRestoreArray(x_, &a));
+  if (!options_.quiet) PetscCall(PetscPrintf(comm_, "initial state: static equilibrium at t = 0\n"));
   PetscFunctionReturn(0);
 }
 

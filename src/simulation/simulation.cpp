@@ -33,6 +33,10 @@ PetscErrorCode Simulation::setUp()
     auto energy = std::make_unique<EnergyCheck>(options_.energyTolerance);
     energy_ = energy.get();
     monitors_.push_back(std::move(energy));
+    if (scene_.dynamic.startStatic) { // initial: static
+      statics_ = std::make_unique<StaticSolver>(assembler_);
+      PetscCall(statics_->setUp());
+    }
   } else {
     statics_ = std::make_unique<StaticSolver>(assembler_);
     PetscCall(statics_->setUp());

@@ -64,6 +64,40 @@ TEST(RankIndependence, DynamicRunMatchesSingleRank)
   EXPECT_EQ(distributed.summary.steps, alone.summary.steps);
 }
 
+TEST(RankIndependence, DampedDynamicRunMatchesSingleRank)
+{
+  PetscMPIInt size;
+  MPI_Comm_size(PETSC_COMM_WORLD, &size);
+  if (size == 1) GTEST_SKIP() << "run under mpiexec -n 2 (CTest: mpi2.regression)";
+  // The scene above with Kelvin-Voigt damping in both beams (both forms of the keys).
+  std::string text = kScene;
+  const auto damp = [&](const std::string &body, const std::string &keys) {
+    const std::size_t at = text.find("rhoA", text.find("name: " + body));
+    text.insert(text.find('}', at), keys);
+  };
+  damp("lower", ", eta_axial: 2.0e-4, eta_bending: 4.0e-3");
+  damp("upper", ", damping_ratio: 0.03, damping_frequency: 5.0");
+  const Scene scene = parseScene(text, "rank-independence-damped.yaml");
+  const DynamicHistory distributed = runDynamic(scene, PETSC_COMM_WORLD);
+  const DynamicHistory alone = runDynamic(scene, PETSC_COMM_SELF);
+  ASSERT_TRUE(distributed.summary.completed) << distributed.summary.failure;
+  ASSERT_TRUE(alone.summary.completed) << alone.summary.failure;
+  ASSERT_EQ(distributed.finalState.size(), alone.finalState.size());
+  double diff = 0, norm = 0;
+  for (std::size_t i = 0; i < alone.finalState.size(); ++i) {
+    diff = std::max(diff, std::abs(distributed.finalState[i] - alone.finalState[i]));
+    norm = std::max(norm, std::abs(alone.finalState[i]));
+  }
+  const double p1 = alone.energyParts.back().dissipation, p2 = distributed.energyParts.back().dissipation;
+  PetscPrintf(PETSC_COMM_WORLD,
+              "  damped, %d ranks vs 1: max relative difference of final q, v = %.3e; dissipated power %.6g W vs %.6g W\n",
+              size, diff / norm, p2, p1);
+  EXPECT_LT(diff / norm, 1e-10);
+  EXPECT_GT(p1, 0.0);
+  EXPECT_LT(std::abs(p2 - p1), 1e-10 * p1);
+  EXPECT_EQ(distributed.summary.steps, alone.summary.steps);
+}
+
 TEST(RankIndependence, ExtractionSceneMatchesSingleRank)
 {
   PetscMPIInt size;

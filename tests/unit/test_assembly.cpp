@@ -1,7 +1,8 @@
 // The assembled Jacobian of the whole saddle-point system against central
 // finite differences of the assembled residual, for every analysis mode
 // (dynamic iteration matrix, static tangent, acceleration level), at a
-// random deformed state with nonzero multipliers.
+// random deformed state with nonzero multipliers. Beams a and sled carry
+// Kelvin-Voigt damping (its cV and cQ blocks), b none.
 #include "boomdyn/assembler.hpp"
 #include "boomdyn/scene_reader.hpp"
 
@@ -21,7 +22,7 @@ bodies:
   - name: a
     length: 1.0
     elements: 3
-    section: {EA: 1.0e7, EI: 2.0e4, rhoA: 10.0}
+    section: {EA: 1.0e7, EI: 2.0e4, rhoA: 10.0, eta_axial: 1.0e-3, eta_bending: 5.0e-3}
   - name: b
     length: 0.8
     elements: 2
@@ -29,7 +30,11 @@ bodies:
     section: {EA: 5.0e6, EI: 1.0e4, rhoA: 8.0}
   - {name: rail, type: rigid, length: 1.5, origin: [0, -0.5], angle: 10, section: {rhoA: 4.0}}
   - {name: block, type: rigid, length: 0.3, origin: [0.49240387650610395, -0.41317591116653485], angle: 10, section: {rhoA: 6.0}}
-  - {name: sled, length: 0.6, elements: 2, origin: [0.9, 0.0], section: {EA: 2.0e6, EI: 3.0e3, rhoA: 5.0}}
+  - name: sled
+    length: 0.6
+    elements: 2
+    origin: [0.9, 0.0]
+    section: {EA: 2.0e6, EI: 3.0e3, rhoA: 5.0, damping_ratio: 0.03, damping_frequency: 4.0}
 constraints:
   - type: clamp
     body: a

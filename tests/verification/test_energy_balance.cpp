@@ -105,3 +105,20 @@ TEST(EnergyBalance, CheckFlagsCreatedEnergyOnly)
   e.kinetic = 1e9;
   EXPECT_TRUE(off.update(2.0, 1.0, e).empty());
 }
+
+TEST(EnergyBalance, DissipatedWorkClosesTheBalance)
+{
+  // A vibration losing 2 J to material damping over 1 s at a constant 2 W:
+  // E falls by 2 J, W_diss = 2 J, the closure E - E0 - W_in + W_diss is 0;
+  // the checked excess E - E0 - W_in is the -2 J of dissipation.
+  EnergyBalance balance(0.05);
+  EnergyParts e;
+  e.kinetic = 10.0, e.dissipation = 2.0;
+  EXPECT_TRUE(balance.update(0.0, 0.0, e).empty());
+  EXPECT_TRUE(balance.update(0.1, 0.1, e).empty()); // baseline
+  e.kinetic = 8.0;
+  EXPECT_TRUE(balance.update(1.1, 1.0, e).empty());
+  EXPECT_NEAR(balance.dissipatedWork(), 2.0, 1e-12);
+  EXPECT_NEAR(balance.closure(), 0.0, 1e-12);
+  EXPECT_NEAR(balance.excess(), -2.0, 1e-12);
+}
