@@ -15,6 +15,7 @@
 #pragma once
 
 #include "boomdyn/assembler.hpp"
+#include "boomdyn/block_convergence.hpp"
 #include "boomdyn/petsc_handle.hpp"
 
 #include <petscsnes.h>
@@ -37,7 +38,11 @@ struct JacobianReuse {
 // The Newton solver's own options (-boom_jacobian_*, -boom_schur_dd) in one
 // PetscOptionsBegin/End block with help text, checked; called by setUp(),
 // and by the program for -help without a scene, so -help lists them too.
-PetscErrorCode readNewtonOptions(MPI_Comm comm, const char *prefix, JacobianReuse *reuse, PetscBool *schur);
+// -boom_newton_block_test (default on) selects the per-block convergence test
+// (block_convergence.hpp) instead of PETSc's test on the whole vector; it is
+// read (and listed by -help) also when blockTest is null.
+PetscErrorCode readNewtonOptions(MPI_Comm comm, const char *prefix, JacobianReuse *reuse, PetscBool *schur,
+                                 PetscBool *blockTest = nullptr);
 
 struct NewtonStatistics {
   PetscInt solves = 0, iterations = 0, jacobians = 0, retriesWithFreshJacobian = 0;
@@ -84,6 +89,8 @@ private:
   AssemblyContext jacobianCtx_;  // coefficients J_ was built with
   PetscInt jacobianAge_ = 0;     // solves since J_ was built
   PetscReal previousFnorm_ = 0;
+  bool blockTest_ = true;
+  BlockConvergence blocks_;
 };
 
 } // namespace boomdyn

@@ -23,7 +23,7 @@ namespace {
 // Options of boomdyn read elsewhere than in this file, listed here so that
 // they are known to rejectUnknownOptions (their help comes with the solver).
 const char *const libraryOptions[] = {"-boom_jacobian_reuse", "-boom_jacobian_refresh_ratio", "-boom_jacobian_max_age",
-                                      "-boom_schur_dd"};
+                                      "-boom_schur_dd", "-boom_newton_block_test"};
 
 // Options read in this file (filled by the Option* helpers as they go).
 // More steps than a run can take (1e9 steps of the smallest model take

@@ -37,16 +37,20 @@ PetscErrorCode NewtonSolver::setUp(Assembler &assembler, const char *prefix, Pet
   PetscCall(SNESGetKSP(snes_, &ksp));
   PetscCall(useDirectSolver(ksp));
 
-  PetscBool schur = PETSC_FALSE;
-  PetscCall(readNewtonOptions(assembler.comm(), prefix, &reuse_, &schur));
+  PetscBool schur = PETSC_FALSE, blockTest = PETSC_TRUE;
+  PetscCall(readNewtonOptions(assembler.comm(), prefix, &reuse_, &schur, &blockTest));
   if (schur) PetscCall(useSchurComplementSolver(ksp));
-  if (reuse_.enabled) PetscCall(SNESSetConvergenceTest(snes_, convergenceTest, this, nullptr));
+  blockTest_ = blockTest;
+  if (blockTest_) PetscCall(blocks_.setUp(assembler.model(), F_));
+  if (reuse_.enabled || blockTest_) PetscCall(SNESSetConvergenceTest(snes_, convergenceTest, this, nullptr));
   PetscCall(SNESSetFromOptions(snes_));
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode readNewtonOptions(MPI_Comm comm, const char *prefix, JacobianReuse *reuse, PetscBool *schur)
+PetscErrorCode readNewtonOptions(MPI_Comm comm, const char *prefix, JacobianReuse *reuse, PetscBool *schur,
+                                 PetscBool *blockTest)
 {
+  PetscBool blocks = blockTest ? *blockTest : PETSC_TRUE;
   PetscFunctionBeginUser;
   PetscOptionsBegin(comm, prefix, "Newton iteration matrix reuse", "boomdyn");
   PetscBool enabled = reuse->enabled ? PETSC_TRUE : PETSC_FALSE;
@@ -62,6 +66,11 @@ PetscErrorCode readNewtonOptions(MPI_Comm comm, const char *prefix, JacobianReus
   PetscCall(PetscOptionsBool("-boom_schur_dd",
                              "Direct solves by condensation onto the rank interfaces (KLU per rank) instead of MUMPS", "",
                              *schur, schur, nullptr));
+  PetscCall(PetscOptionsBool("-boom_newton_block_test",
+                             "Judge Newton convergence per block of unknowns (body and slack coordinates, friction states, "
+                             "multipliers), each on its own scale, instead of on the whole vector",
+                             "", blocks, &blocks, nullptr));
+  if (blockTest) *blockTest = blocks;
   PetscOptionsEnd();
   PetscCheck(reuse->refreshRatio > 0 && reuse->refreshRatio < 1, comm, PETSC_ERR_USER_INPUT,
              "-boom_jacobian_refresh_ratio must lie in (0, 1), got %g", (double)reuse->refreshRatio);
@@ -140,7 +149,17 @@ PetscErrorCode NewtonSolver::convergenceTest(SNES snes, PetscInt it, PetscReal x
 {
   auto *me = static_cast<NewtonSolver *>(self);
   PetscFunctionBeginUser;
-  PetscCall(SNESConvergedDefault(snes, it, xnorm, snorm, fnorm, reason, nullptr));
+  if (me->blockTest_) {
+    Vec x, dx, F;
+    PetscReal atol, rtol, stol;
+    PetscInt maxIt, maxF;
+    PetscCall(SNESGetSolution(snes, &x));
+    PetscCall(SNESGetSolutionUpdate(snes, &dx));
+    PetscCall(SNESGetFunction(snes, &F, nullptr, nullptr));
+    PetscCall(SNESGetTolerances(snes, &atol, &rtol, &stol, &maxIt, &maxF));
+    PetscCall(me->blocks_.test(it, x, dx, F, rtol, stol, atol, reason));
+  } else PetscCall(SNESConvergedDefault(snes, it, xnorm, snorm, fnorm, reason, nullptr));
+  if (!me->reuse_.enabled) PetscFunctionReturn(0);
   // A reused matrix that contracts the residual too slowly is rebuilt at the
   // current iterate (then the iteration is Newton's again) -- unless the
   // update is already at round-off size: on fine meshes the residual stalls

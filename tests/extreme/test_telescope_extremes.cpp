@@ -96,7 +96,13 @@ TEST(FastExtraction, PastTheBoomEndStopsWithTheJointAndTrack)
   ASSERT_FALSE(run.summary.completed);
   const std::string ends = contactsNearTrackEnds(Model(scene), run.slacks.back());
   PetscPrintf(PETSC_COMM_WORLD, "  5 m/s, 1.9 m: %s; %s\n", run.summary.failure.c_str(), ends.c_str());
-  EXPECT_NE(run.summary.failure.find("dt_min"), std::string::npos) << run.summary.failure;
+  // j3 reaches the start of boom 3 at the same moment (s = 6e-9 m): with
+  // the per-block Newton test (model.md §4.7) the last solve converges with
+  // j3 at s = -1.6e-11 m and the run stops with that event instead; either
+  // stop names the place.
+  EXPECT_TRUE(run.summary.failure.find("dt_min") != std::string::npos ||
+              run.summary.failure.find("sliding joint 'j3' left its track 'boom3'") != std::string::npos)
+      << run.summary.failure;
   EXPECT_NE(ends.find("sliding joint 'j1' at s = "), std::string::npos) << ends;
   EXPECT_NE(ends.find("from the start of its track 'boom2'"), std::string::npos) << ends;
   EXPECT_NE(ends.find("sliding joint 'j2' at s = "), std::string::npos) << ends;

@@ -1,0 +1,57 @@
+// Newton convergence judged per block of unknowns, each on its own scale
+// (docs/model.md §4.7). One test over the whole vector x = [q | lambda_hat]
+// lets the large entries (positions of metres) hide the small ones: a step
+// norm below 1e-10 |x| accepted LuGre bristle states z of size mu_s/sigma0
+// ~ 1e-8 m that had not converged, so |z| exceeded its bound and a block
+// that had to break away stuck (issue 13, item 1).
+//
+// The blocks are the body coordinates, the slack coordinates, the friction
+// states and the scaled multipliers. A block has converged when
+//   - its residual rows have fallen to rtol times their size at the first
+//     iterate (max norm over the block), or
+//   - its last Newton increment is below stol times the block's size
+//     (2-norms, as PETSc's step test), or below the round-off of the
+//     increments, 100 eps |q| (the coordinates' 2-norm): increments cannot
+//     get smaller than that, however many iterations are made.
+// Friction states are judged entry by entry against max(|z|, g_max/sigma0),
+// their natural size (g_max = max(mu_s, mu_c) bounds |z| sigma0).
+// The iteration has converged when every block has. rtol and stol are
+// SNES's own (-snes_rtol, -snes_stol); the test does not depend on whether
+// the Jacobian is reused.
+#pragma once
+
+#include <petscsnes.h>
+
+#include <array>
+#include <vector>
+
+namespace boomdyn {
+
+class Model;
+
+class BlockConvergence {
+public:
+  enum Block { Bodies = 0, Slacks, FrictionStates, Multipliers, NumBlocks };
+  static const char *blockName(int b);
+
+  // Which block each entry of x owned by this rank belongs to (x: a vector
+  // with the solver's layout), and the size floor of the friction states.
+  PetscErrorCode setUp(const Model &model, Vec x);
+  // The test after Newton iteration `it` at the iterate x with the last
+  // increment dx (unused at it = 0) and the residual F.
+  PetscErrorCode test(PetscInt it, Vec x, Vec dx, Vec F, PetscReal rtol, PetscReal stol, PetscReal atol,
+                      SNESConvergedReason *reason);
+  // The block that kept the last unconverged iteration going (for -info).
+  int lastHolder() const { return lastHolder_; }
+
+private:
+  MPI_Comm comm_ = MPI_COMM_NULL;
+  std::vector<unsigned char> block_; // per owned entry
+  std::vector<double> zFloor_;       // per owned entry (friction states only)
+  std::array<int, NumBlocks> present_{};
+  std::array<double, NumBlocks> initialResidual_{};
+  std::array<double, NumBlocks> previousIncrement_{};
+  int lastHolder_ = -1;
+};
+
+} // namespace boomdyn

@@ -1,0 +1,130 @@
+#include "boomdyn/block_convergence.hpp"
+
+#include "boomdyn/lugre_friction.hpp"
+#include "boomdyn/model.hpp"
+#include "boomdyn/sliding_joint.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace boomdyn {
+
+const char *BlockConvergence::blockName(int b)
+{
+  static const char *names[] = {"body coordinates", "slack coordinates", "friction states", "multipliers"};
+  return b >= 0 && b < NumBlocks ? names[b] : "none";
+}
+
+PetscErrorCode BlockConvergence::setUp(const Model &model, Vec x)
+{
+  PetscInt lo, hi;
+  PetscFunctionBeginUser;
+  PetscCall(PetscObjectGetComm((PetscObject)x, &comm_));
+  PetscCall(VecGetOwnershipRange(x, &lo, &hi));
+  block_.assign(hi - lo, Bodies);
+  zFloor_.assign(hi - lo, 0.0);
+  auto owned = [&](PetscInt g) { return g >= lo && g < hi; };
+  for (PetscInt g = std::max(lo, model.numCoordinates()); g < hi; ++g) block_[g - lo] = Multipliers;
+  for (const auto &joint : model.slidingJoints())
+    if (owned(joint->slackIndex())) block_[joint->slackIndex() - lo] = Slacks;
+  for (const LuGreFriction *f : model.frictions()) {
+    const PetscInt g = f->stateIndex();
+    if (!owned(g)) continue;
+    block_[g - lo] = FrictionStates;
+    zFloor_[g - lo] = std::max(f->spec().mu_s, f->spec().mu_c) / f->spec().sigma0;
+  }
+  std::array<int, NumBlocks> local{};
+  for (unsigned char b : block_) local[b] = 1;
+  PetscCallMPI(MPI_Allreduce(local.data(), present_.data(), NumBlocks, MPI_INT, MPI_MAX, comm_));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode BlockConvergence::test(PetscInt it, Vec x, Vec dx, Vec F, PetscReal rtol, PetscReal stol, PetscReal atol,
+                                      SNESConvergedReason *reason)
+{
+  const PetscScalar *xa, *da = nullptr, *fa;
+  PetscFunctionBeginUser;
+  *reason = SNES_CONVERGED_ITERATING;
+  // Per block: sum of x^2, sum of dx^2, max |F|, and for the friction states
+  // the largest increment relative to the entry's own size; then the 2-norm
+  // of F for PETSc's absolute test. Summed or maximized over the ranks.
+  enum { X2 = 0, D2 = NumBlocks, FMAX = 2 * NumBlocks, ZRATIO = 3 * NumBlocks, F2, N };
+  double local[N] = {0};
+  PetscCall(VecGetArrayRead(x, &xa));
+  PetscCall(VecGetArrayRead(F, &fa));
+  if (it > 0) PetscCall(VecGetArrayRead(dx, &da));
+  for (std::size_t i = 0; i < block_.size(); ++i) {
+    const int b = block_[i];
+    local[X2 + b] += xa[i] * xa[i];
+    local[FMAX + b] = std::max(local[FMAX + b], std::abs(fa[i]));
+    local[F2] += fa[i] * fa[i];
+    if (!da) continue;
+    local[D2 + b] += da[i] * da[i];
+    if (b == FrictionStates) local[ZRATIO] = std::max(local[ZRATIO], std::abs(da[i]) / std::max(std::abs(xa[i]), zFloor_[i]));
+  }
+  if (da) PetscCall(VecRestoreArrayRead(dx, &da));
+  PetscCall(VecRestoreArrayRead(F, &fa));
+  PetscCall(VecRestoreArrayRead(x, &xa));
+  // Two reductions: the sums, then the maxima.
+  double sums[2 * NumBlocks + 1], maxima[NumBlocks + 1], all[N];
+  for (int b = 0; b < 2 * NumBlocks; ++b) sums[b] = local[b];
+  sums[2 * NumBlocks] = local[F2];
+  for (int b = 0; b <= NumBlocks; ++b) maxima[b] = local[FMAX + b];
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, sums, 2 * NumBlocks + 1, MPI_DOUBLE, MPI_SUM, comm_));
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, maxima, NumBlocks + 1, MPI_DOUBLE, MPI_MAX, comm_));
+  for (int b = 0; b < 2 * NumBlocks; ++b) all[b] = sums[b];
+  all[F2] = sums[2 * NumBlocks];
+  for (int b = 0; b <= NumBlocks; ++b) all[FMAX + b] = maxima[b];
+
+  const double fnorm = std::sqrt(all[F2]);
+  if (std::isnan(fnorm) || std::isinf(fnorm)) {
+    *reason = SNES_DIVERGED_FNORM_NAN;
+    PetscFunctionReturn(0);
+  }
+  if (fnorm <= atol) {
+    *reason = SNES_CONVERGED_FNORM_ABS;
+    PetscFunctionReturn(0);
+  }
+  if (it == 0) {
+    for (int b = 0; b < NumBlocks; ++b) initialResidual_[b] = all[FMAX + b];
+    previousIncrement_.fill(0.0);
+    PetscFunctionReturn(0);
+  }
+  // Increments below this are round-off: the coordinates' size times a
+  // hundred machine epsilons.
+  const double roundoff = 100 * std::numeric_limits<double>::epsilon() * std::sqrt(all[X2 + Bodies] + all[X2 + Slacks]);
+  bool allResiduals = true;
+  lastHolder_ = -1;
+  std::array<double, NumBlocks> increments{};
+  for (int b = 0; b < NumBlocks; ++b) {
+    // The size of the block's increment, for the friction states relative
+    // to each entry's own size.
+    increments[b] = b == FrictionStates ? all[ZRATIO] : std::sqrt(all[D2 + b]);
+    if (!present_[b]) continue;
+    const bool residual = all[FMAX + b] <= rtol * initialResidual_[b];
+    // The error left after this increment, estimated from the contraction
+    // theta = |dx_k| / |dx_{k-1}| as theta / (1 - theta) |dx_k| (Hairer &
+    // Wanner, Solving ODEs II, IV.8); at the first iteration, or without
+    // contraction, |dx_k| itself.
+    const double theta = it > 1 && previousIncrement_[b] > 0 ? increments[b] / previousIncrement_[b] : 1.0;
+    const double left = theta < 1 ? theta / (1 - theta) * increments[b] : increments[b];
+    const double step = std::sqrt(all[D2 + b]);
+    const bool increment = step <= roundoff || (b == FrictionStates ? left <= stol : left <= stol * std::sqrt(all[X2 + b]));
+    allResiduals = allResiduals && residual;
+    if (!residual && !increment && lastHolder_ < 0) {
+      lastHolder_ = b;
+      PetscCall(PetscInfo(nullptr,
+                          "iteration %d: %s not converged: residual %g (%g at the first iterate), increment %g (block size %g, "
+                          "largest relative increment of a friction state %g, estimated error left %g, round-off %g)\n",
+                          (int)it, blockName(b), all[FMAX + b], initialResidual_[b], step, std::sqrt(all[X2 + b]), all[ZRATIO],
+                          left, roundoff));
+    }
+  }
+  previousIncrement_ = increments;
+  if (lastHolder_ >= 0) PetscFunctionReturn(0);
+  *reason = allResiduals ? SNES_CONVERGED_FNORM_RELATIVE : SNES_CONVERGED_SNORM_RELATIVE;
+  PetscFunctionReturn(0);
+}
+
+} // namespace boomdyn
