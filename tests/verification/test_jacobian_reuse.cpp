@@ -15,7 +15,7 @@ using namespace boomdyn::testing;
 TEST(JacobianReuse, ExtractionMatchesFullNewtonWithFewerFactorizations)
 {
   const Scene scene = shortenedExtraction(0.5);
-  const DynamicHistory full = runDynamic(scene, PETSC_COMM_SELF),
+  const DynamicHistory full = runDynamicWithOption(scene, PETSC_COMM_SELF, "-boom_jacobian_reuse", "0"),
                        reused = runDynamicWithOption(scene, PETSC_COMM_SELF, "-boom_jacobian_reuse", "1");
   ASSERT_TRUE(full.summary.completed) << full.summary.failure;
   ASSERT_TRUE(reused.summary.completed) << reused.summary.failure;
