@@ -73,7 +73,7 @@ private:
   std::vector<PetscScalar> cooV_;
   std::vector<double> qc_, vc_, ac_;  // local offsets
   std::vector<char> firstOrder_;      // local entries that are first-order states
-  std::vector<double> q_, v_, a_;     // local mapped values
+  std::vector<double> q_, v_, a_, x_; // local mapped values; x_: the unknowns as given (multipliers)
   std::vector<double> bq_, bv_, ba_, bl_, br_, bJ_; // per-item buffers
 };
 

@@ -4,14 +4,16 @@
 // them can be changed with the usual -snes_/-ksp_/-pc_ options under the
 // solver's prefix.
 //
-// Optional Jacobian reuse (modified Newton, -boom_jacobian_reuse): the
-// factored iteration matrix is kept across Newton iterations and across
-// solves, and rebuilt only when it no longer contracts the residual well
-// enough, when the iteration coefficients change (a new step size or another
-// kind of solve), when the sparsity pattern changes, or when it is older
-// than a given number of solves. A solve that fails with an old matrix is
-// retried once from the same initial guess with a fresh one, so reuse never
-// turns a solvable step into a rejected one.
+// Jacobian reuse (modified Newton, on by default; -boom_jacobian_reuse 0 for
+// full Newton): the factored iteration matrix is kept across Newton
+// iterations and across solves, and rebuilt only when it no longer contracts
+// the residual well enough, when the iteration coefficients change (a new
+// step size or another kind of solve), when the sparsity pattern changes, or
+// when it is older than a given number of solves. A convergence by a small
+// update with a kept matrix while the residual stagnates is accepted only
+// after a Newton step; a solve in which a kept matrix made the residual grow,
+// or that fails, is redone by full Newton from the same initial guess, so
+// reuse never turns a step full Newton solves into a rejected one.
 #pragma once
 
 #include "boomdyn/assembler.hpp"
@@ -88,6 +90,8 @@ private:
   bool jacobianFresh_ = false;   // J_ was built during the current solve
   AssemblyContext jacobianCtx_;  // coefficients J_ was built with
   PetscInt jacobianAge_ = 0;     // solves since J_ was built
+  PetscInt jacobianIteration_ = 0; // SNES iteration at which J_ was built (meaningful when jacobianFresh_)
+  bool fullNewton_ = false;      // retrying a failed solve with a fresh matrix at every iterate
   PetscReal previousFnorm_ = 0;
   bool blockTest_ = true;
   BlockConvergence blocks_;

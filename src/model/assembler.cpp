@@ -116,7 +116,7 @@ PetscErrorCode Assembler::buildPattern()
     const auto it = localOf.find(g);
     if (it != localOf.end()) firstOrder_[it->second] = 1;
   }
-  q_.assign(nloc, 0.0), v_.assign(nloc, 0.0), a_.assign(nloc, 0.0);
+  q_.assign(nloc, 0.0), v_.assign(nloc, 0.0), a_.assign(nloc, 0.0), x_.assign(nloc, 0.0);
   for (auto *b : {&bq_, &bv_, &ba_, &bl_, &br_}) b->assign(maxN, 0.0);
   bJ_.assign(maxN * maxN, 0.0);
   PetscFunctionReturn(0);
@@ -179,7 +179,9 @@ PetscErrorCode Assembler::scatterAndMap(const AssemblyContext &ctx, Vec x)
     v_[i] = vc_[i] + (firstOrder_[i] ? k.cZ : k.cV) * xl[i];
     a_[i] = ac_[i] + k.cA * xl[i];
   }
-  // Multiplier entries are read from xLocal_ directly (gather); keep a copy in bl_ per item.
+  // The multipliers are read as given; a plain copy, so that gather() needs
+  // no PETSc call per item (two per item were ~10 % of a residual at 1e5 elements).
+  std::copy(xl, xl + x_.size(), x_.begin());
   PetscCall(VecRestoreArrayRead(xLocal_, &xl));
   PetscFunctionReturn(0);
 }
@@ -187,16 +189,13 @@ PetscErrorCode Assembler::scatterAndMap(const AssemblyContext &ctx, Vec x)
 void Assembler::gather(std::size_t k, ItemValues &vals)
 {
   const int begin = itemStart_[k], n = itemStart_[k + 1] - begin, nc = itemCoords_[k];
-  const PetscScalar *xl;
-  (void)VecGetArrayRead(xLocal_, &xl); // cannot fail on a sequential vector
   for (int i = 0; i < n; ++i) {
     const PetscInt li = itemLocal_[begin + i];
     bq_[i] = q_[li];
     bv_[i] = v_[li];
     ba_[i] = a_[li];
-    bl_[i] = xl[li];
+    bl_[i] = x_[li];
   }
-  (void)VecRestoreArrayRead(xLocal_, &xl);
   vals.q = bq_.data();
   vals.v = bv_.data();
   vals.a = ba_.data();
