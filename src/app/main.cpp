@@ -49,7 +49,8 @@ PetscErrorCode keepFirstError(MPI_Comm, int line, const char *function, const ch
     // which cross into PETSc code in src/app and src/simulation) say all
     // there is to say; other errors name where they arose.
     const std::string where = file ? file : "?";
-    const bool userError = n == PETSC_ERR_USER_INPUT || n == PETSC_ERR_NOT_CONVERGED || n == PETSC_ERR_FILE_WRITE ||
+    const bool userError = n == PETSC_ERR_USER_INPUT || n == PETSC_ERR_NOT_CONVERGED ||
+                           n == PETSC_ERR_FILE_WRITE || // a full disk, a results file taken by another run
                            where.find("src/app/") != std::string::npos || where.find("src/simulation/") != std::string::npos;
     if (!userError)
       firstPetscError += " (in " + std::string(function ? function : "?") + ", " + where + ":" + std::to_string(line) + ")";

@@ -99,8 +99,8 @@ PetscErrorCode optionNumber(PetscOptionItems *PetscOptionsObject, const char *na
     // The scene's rule for magnitudes (checked_yaml.cpp): products of such
     // numbers would overflow or underflow.
     PetscCheck(!given || *value == 0 || (std::fabs(*value) >= 1e-100 && std::fabs(*value) <= 1e100), PETSC_COMM_WORLD,
-               PETSC_ERR_USER_INPUT, "%s %s: outside the range boomdyn computes with (0, or 1e-100 to 1e+100 in magnitude)",
-               name, text);
+               PETSC_ERR_USER_INPUT,
+               "%s %s: outside the range boomdyn computes with (0, or 1e-100 to 1e+100 in magnitude)", name, text);
   }
   if (set) *set = given;
   PetscFunctionReturn(0);
@@ -306,13 +306,12 @@ bool isOptionName(const std::string &word)
 // PETSc's and MPI's options for the whole program (logging, memory, debugger, ...).
 bool isGlobalPetscOption(const std::string &name)
 {
-  static const char *const global[] = {"-help", "-version", "-log", "-malloc", "-memory_view", "-info", "-options_",
-                                       "-on_error_", "-no_signal_handler", "-fp_trap", "-debugger", "-start_in_debugger",
-                                       "-stop_for_debugger", "-display", "-nox", "-checkstack", "-objects_dump",
-                                       "-skip_petscrc", "-history", "-check_pointer_intensity", "-error_output_",
-                                       "-get_total_flops", "-saws", "-mpi", "-petsc", "-use_gpu_aware_mpi", "-device",
-                                       "-viewer_", "-draw_", "-x_virtual", "-python", "-slepc", "-vec_", "-sf_", "-is_",
-                                       "-dm_", "-citations", "-timing"};
+  static const char *const global[] = {
+      "-help", "-version", "-log", "-malloc", "-memory_view", "-info", "-options_", "-on_error_",
+      "-no_signal_handler", "-fp_trap", "-debugger", "-start_in_debugger", "-stop_for_debugger", "-display", "-nox",
+      "-checkstack", "-objects_dump", "-skip_petscrc", "-history", "-check_pointer_intensity", "-error_output_",
+      "-get_total_flops", "-saws", "-mpi", "-petsc", "-use_gpu_aware_mpi", "-device", "-viewer_", "-draw_",
+      "-x_virtual", "-python", "-slepc", "-vec_", "-sf_", "-is_", "-dm_", "-citations", "-timing"};
   for (const char *g : global)
     if (name.rfind(g, 0) == 0) return true;
   return false;

@@ -112,7 +112,8 @@ std::string CheckpointReader::firstNonFinite(const std::vector<std::string> &sca
 {
   auto named = [](const std::string &what, double x) { return what + " = " + std::to_string(x); };
   for (std::size_t i = 0; i < scalarNames.size() && i < scalarValues.size(); ++i)
-    if (!std::isfinite(scalarValues[i])) return "value '" + scalarNames[i] + "' is not finite (" + named(scalarNames[i], scalarValues[i]) + ")";
+    if (!std::isfinite(scalarValues[i]))
+      return "value '" + scalarNames[i] + "' is not finite (" + named(scalarNames[i], scalarValues[i]) + ")";
   for (const auto &[n, v] : arrays_)
     for (std::size_t i = 0; i < v.size(); ++i)
       if (!std::isfinite(v[i])) return "array '" + n + "' is not finite at entry " + std::to_string(i);

@@ -47,7 +47,8 @@ PetscErrorCode Simulation::runStatic(const std::function<bool()> &stop)
   PetscBool converged = PETSC_TRUE;
   if (!interrupted) PetscCall(statics_->solve(t, scene_.statics.load_steps, x_, onLoadStep, &converged));
   if (!converged) outcome_.status = "failed: " + statics_->failure();
-  else if (interrupted || (modal && !modesAtStart && stopRequested())) outcome_.status = "interrupted", converged = PETSC_FALSE;
+  else if (interrupted || (modal && !modesAtStart && stopRequested()))
+    outcome_.status = "interrupted", converged = PETSC_FALSE; // no modes after an interrupt
   state.t = t;
   state.lambda = statics_->multipliers();
   outcome_.endTime = t;
