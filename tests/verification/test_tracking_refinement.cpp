@@ -74,8 +74,13 @@ TEST(TrackingRefinement, EqualsFullSolveAlongExtraction)
       PetscCall(refined.analyze(s.t, integrator.positions(), integrator.multipliers(), &b));
       ++analyses;
       differentPick += a.index != b.index;
-      for (int k = 0; k < count; ++k)
-        worstFrequency = std::max(worstFrequency, std::abs(a.frequencyHz[k] - b.frequencyHz[k]) / a.frequencyHz[k]);
+      for (int k = 0; k < count; ++k) {
+        const double d = std::abs(a.frequencyHz[k] - b.frequencyHz[k]) / a.frequencyHz[k];
+        if (d > 5e-9)
+          PetscPrintf(PETSC_COMM_WORLD, "  t = %.3f s, mode %d: %.10f Hz (full) vs %.10f Hz (%s), relative difference %.2e\n",
+                      s.t, k + 1, a.frequencyHz[k], b.frequencyHz[k], b.refined ? "refined" : "fallback", d);
+        worstFrequency = std::max(worstFrequency, d);
+      }
       if (b.refined) {
         ++refinedAnalyses;
         std::vector<double> omega2;
