@@ -17,10 +17,19 @@ using Vec8 = Eigen::Matrix<double, 8, 1>;
 using Mat8 = Eigen::Matrix<double, 8, 8>;
 using Mat28 = Eigen::Matrix<double, 2, 8>;
 
+// Quadrature of the axial term (docs/model.md §1.1, "Axial integration").
+// Full: axial and bending energy on the same 5 Gauss points. Reduced: the
+// axial energy on 3 Gauss points (selective reduced integration, relieves
+// membrane locking of slender beams in bending), the bending energy on 5.
+// 3 points integrate the linearized axial stiffness exactly, so reduced
+// integration adds no zero-energy mode.
+enum class AxialIntegration { Full, Reduced };
+
 struct Section {
   double EA = 0, EI = 0, rhoA = 0;
   // Kelvin-Voigt retardation times (s): N = EA (eps + etaA eps'), M = EI (K + etaB K').
   double etaA = 0, etaB = 0;
+  AxialIntegration axialIntegration = AxialIntegration::Full;
   bool damped() const { return etaA > 0 || etaB > 0; }
 };
 
@@ -37,7 +46,7 @@ Mat8 massMatrix(double rhoA, double l);
 // Gravity force ∫ rhoA S^T g dx (exact).
 Vec8 gravityForce(double rhoA, double l, const Vec2 &g);
 
-// Strain energy of the element (Gauss quadrature, kGaussPoints points).
+// Strain energy of the element (Gauss quadrature, see AxialIntegration).
 double strainEnergy(const Section &sec, double l, const Vec8 &e);
 // Internal force f = dU/de and, if K != nullptr, tangent K = d^2U/de^2.
 void internalForce(const Section &sec, double l, const Vec8 &e, Vec8 &f, Mat8 *K);
@@ -57,10 +66,12 @@ double curvature(const Vec8 &e, double xi, double l);
 // Element vector of a straight, unstrained element from p0 along unit dir.
 Vec8 straightElement(const Vec2 &p0, const Vec2 &dir, double l);
 
-// Gauss points per element for the elastic forces. The axial energy is a
+// Gauss points per element for the bending energy (and for the axial energy
+// with AxialIntegration::Full; kReducedAxialPoints with Reduced). The axial energy is a
 // polynomial of degree 8 in xi (exact with 5 points); the curvature term is
 // rational and 5 points keep its quadrature error far below the
 // discretization error of the cubic interpolation.
 constexpr int kGaussPoints = 5;
+constexpr int kReducedAxialPoints = 3;
 
 } // namespace boomdyn::ancf

@@ -21,6 +21,9 @@ struct SectionSpec {
   double rhoA = 0; // mass per length, kg/m
   // Kelvin-Voigt retardation times of axial strain and curvature, s (flexible bodies; 0: undamped)
   double etaAxial = 0, etaBending = 0;
+  // Axial energy on 3 instead of 5 Gauss points (ancf::AxialIntegration::Reduced;
+  // option -boom_axial_integration reduced): relieves membrane locking.
+  bool reducedAxialIntegration = false;
 };
 
 // A body as its type (src/bodies/*_type.cpp) describes it after reading,

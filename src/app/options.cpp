@@ -170,6 +170,13 @@ PetscErrorCode readSceneOverrides(PetscOptionItems *PetscOptionsObject, Scene *s
     PetscCall(optionNumber(PetscOptionsObject, name.c_str(), help.c_str(), &n));
     b.elements = static_cast<int>(n);
   }
+  std::string axial = "full";
+  PetscCall(optionString(PetscOptionsObject, "-boom_axial_integration",
+                         "Gauss points of the ANCF axial energy: full (5, as bending) or reduced (3: no membrane locking)",
+                         &axial));
+  PetscCheck(axial == "full" || axial == "reduced", PETSC_COMM_WORLD, PETSC_ERR_USER_INPUT,
+             "-boom_axial_integration must be full or reduced (got '%s')", axial.c_str());
+  for (BodySpec &b : scene->bodies) b.section.reducedAxialIntegration = axial == "reduced";
   DynamicSpec &d = scene->dynamic;
   double dt = d.dt;
   PetscCall(optionNumber(PetscOptionsObject, "-ts_dt", "Time step (largest step with -boom_adaptive_tol)", &dt, &set->dt));

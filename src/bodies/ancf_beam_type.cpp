@@ -28,7 +28,8 @@ std::optional<SpecIssue> checkAncfBeam(const ComponentSpec &spec, const Scene &)
 
 void buildAncfBeam(const BodySpec &b, BodyBuilder &builder)
 {
-  const ancf::Section sec{b.section.EA, b.section.EI, b.section.rhoA, b.section.etaAxial, b.section.etaBending};
+  ancf::Section sec{b.section.EA, b.section.EI, b.section.rhoA, b.section.etaAxial, b.section.etaBending};
+  if (b.section.reducedAxialIntegration) sec.axialIntegration = ancf::AxialIntegration::Reduced;
   auto owned = std::make_unique<AncfBeam>(b.name, b.length, b.elements, sec, Vec2(b.origin[0], b.origin[1]), b.angle,
                                           builder.firstCoordinate());
   const AncfBeam &beam = *owned;

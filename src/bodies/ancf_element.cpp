@@ -7,28 +7,55 @@ namespace boomdyn::ancf {
 
 namespace {
 
-struct GaussRule {
-  std::array<double, kGaussPoints> xi, w; // on [0, 1]
+// One quadrature point on [0, 1]: position, weight, and the factors (0 or
+// 1) of the axial and bending terms evaluated there. With full integration
+// both factors are 1 at every point; multiplying by 1.0 is exact, so the
+// full rule gives bit-identical results to a single combined loop.
+struct QuadPoint {
+  double xi, w, axial, bending;
 };
 
-const GaussRule &gaussRule()
+struct QuadRule {
+  std::array<QuadPoint, kGaussPoints + kReducedAxialPoints> points;
+  int size;
+};
+
+// n-point Gauss-Legendre (n = 3 or 5) on [0, 1].
+void gaussLegendre01(int n, double *xi, double *w)
 {
-  static const GaussRule rule = [] {
-    // 5-point Gauss-Legendre on [-1, 1], mapped to [0, 1].
-    const double a = std::sqrt(5.0 - 2.0 * std::sqrt(10.0 / 7.0)) / 3.0;
-    const double b = std::sqrt(5.0 + 2.0 * std::sqrt(10.0 / 7.0)) / 3.0;
-    const double wa = (322.0 + 13.0 * std::sqrt(70.0)) / 900.0;
-    const double wb = (322.0 - 13.0 * std::sqrt(70.0)) / 900.0;
-    const std::array<double, 5> x{-b, -a, 0.0, a, b};
-    const std::array<double, 5> w{wb, wa, 128.0 / 225.0, wa, wb};
-    GaussRule r;
-    for (int i = 0; i < 5; ++i) {
-      r.xi[i] = 0.5 * (x[i] + 1.0);
-      r.w[i] = 0.5 * w[i];
-    }
-    return r;
-  }();
-  return rule;
+  if (n == 3) {
+    const double a = std::sqrt(0.6);
+    const double x[3] = {-a, 0.0, a}, wt[3] = {5.0 / 9.0, 8.0 / 9.0, 5.0 / 9.0};
+    for (int i = 0; i < 3; ++i) xi[i] = 0.5 * (x[i] + 1.0), w[i] = 0.5 * wt[i];
+    return;
+  }
+  const double a = std::sqrt(5.0 - 2.0 * std::sqrt(10.0 / 7.0)) / 3.0;
+  const double b = std::sqrt(5.0 + 2.0 * std::sqrt(10.0 / 7.0)) / 3.0;
+  const double wa = (322.0 + 13.0 * std::sqrt(70.0)) / 900.0;
+  const double wb = (322.0 - 13.0 * std::sqrt(70.0)) / 900.0;
+  const double x[5] = {-b, -a, 0.0, a, b}, wt[5] = {wb, wa, 128.0 / 225.0, wa, wb};
+  for (int i = 0; i < 5; ++i) xi[i] = 0.5 * (x[i] + 1.0), w[i] = 0.5 * wt[i];
+}
+
+QuadRule makeRule(AxialIntegration axial)
+{
+  QuadRule r{};
+  double xi[kGaussPoints], w[kGaussPoints];
+  gaussLegendre01(kGaussPoints, xi, w);
+  const double fullAxial = axial == AxialIntegration::Full ? 1.0 : 0.0;
+  for (int i = 0; i < kGaussPoints; ++i) r.points[i] = {xi[i], w[i], fullAxial, 1.0};
+  r.size = kGaussPoints;
+  if (axial == AxialIntegration::Reduced) {
+    gaussLegendre01(kReducedAxialPoints, xi, w);
+    for (int i = 0; i < kReducedAxialPoints; ++i) r.points[r.size++] = {xi[i], w[i], 1.0, 0.0};
+  }
+  return r;
+}
+
+const QuadRule &quadRule(AxialIntegration axial)
+{
+  static const QuadRule full = makeRule(AxialIntegration::Full), reduced = makeRule(AxialIntegration::Reduced);
+  return axial == AxialIntegration::Full ? full : reduced;
 }
 
 // Scalar cross product a x b = a_x b_y - a_y b_x.
@@ -139,18 +166,19 @@ double curvature(const Vec8 &e, double xi, double l)
 
 double strainEnergy(const Section &sec, double l, const Vec8 &e)
 {
-  const GaussRule &g = gaussRule();
+  const QuadRule &g = quadRule(sec.axialIntegration);
   double U = 0;
-  for (int p = 0; p < kGaussPoints; ++p) {
-    const double eps = axialStrain(e, g.xi[p], l), K = curvature(e, g.xi[p], l);
-    U += g.w[p] * (sec.EA * eps * eps + sec.EI * K * K);
+  for (int p = 0; p < g.size; ++p) {
+    const QuadPoint &q = g.points[p];
+    const double eps = axialStrain(e, q.xi, l), K = curvature(e, q.xi, l);
+    U += q.w * (q.axial * sec.EA * eps * eps + q.bending * sec.EI * K * K);
   }
   return 0.5 * l * U;
 }
 
 void internalForce(const Section &sec, double l, const Vec8 &e, Vec8 &f, Mat8 *Kt)
 {
-  const GaussRule &g = gaussRule();
+  const QuadRule &g = quadRule(sec.axialIntegration);
   Vec8 fl = Vec8::Zero(); // local accumulator: f may alias e
   // With a = EA eps - 2 EI K^2 / J2 and b = EI K / J2 (dK = (dc - 2 K dEps) / J2),
   //   f  = sum wx (a dEps + b dc),
@@ -163,18 +191,20 @@ void internalForce(const Section &sec, double l, const Vec8 &e, Vec8 &f, Mat8 *K
     P.setZero(), Q.setZero();
     Kt->setZero();
   }
-  for (int p = 0; p < kGaussPoints; ++p) {
-    const Eigen::Vector4d s1 = shapeValues(g.xi[p], l, 1), s2 = shapeValues(g.xi[p], l, 2);
+  for (int p = 0; p < g.size; ++p) {
+    const QuadPoint &q = g.points[p];
+    const double EA = q.axial * sec.EA, EI = q.bending * sec.EI; // this point's terms
+    const Eigen::Vector4d s1 = shapeValues(q.xi, l, 1), s2 = shapeValues(q.xi, l, 2);
     Vec2 r1 = Vec2::Zero(), r2 = Vec2::Zero();
     for (int k = 0; k < 4; ++k) {
       r1 += s1[k] * e.segment<2>(2 * k);
       r2 += s2[k] * e.segment<2>(2 * k);
     }
-    const double wx = g.w[p] * l; // dx weight
+    const double wx = q.w * l; // dx weight
     const double J2 = r1.squaredNorm(), iJ2 = 1.0 / J2;
     const double eps = 0.5 * (J2 - 1.0);
     const double K = cross(r1, r2) * iJ2;
-    const double a = sec.EA * eps - 2.0 * sec.EI * K * K * iJ2, b = sec.EI * K * iJ2;
+    const double a = EA * eps - 2.0 * EI * K * K * iJ2, b = EI * K * iJ2;
     // dEps = s1 ⊗ r1, dc = s1 ⊗ W r2 - s2 ⊗ W r1.
     const Vec2 v1 = wx * (a * r1 + b * rotCW(r2)), v2 = (wx * b) * rotCW(r1);
     for (int k = 0; k < 4; ++k) fl.segment<2>(2 * k) += s1[k] * v1 - s2[k] * v2;
@@ -184,7 +214,7 @@ void internalForce(const Section &sec, double l, const Vec8 &e, Vec8 &f, Mat8 *K
     Eigen::Matrix<double, 8, 2> G;
     G << dEps, dK;
     Eigen::Matrix2d Mw;
-    Mw << wx * sec.EA, -2.0 * wx * b, -2.0 * wx * b, wx * sec.EI;
+    Mw << wx * EA, -2.0 * wx * b, -2.0 * wx * b, wx * EI;
     Kt->noalias() += G * Mw * G.transpose();
     P.noalias() += (wx * a) * s1 * s1.transpose();
     Q.noalias() += (wx * b) * (s1 * s2.transpose() - s2 * s1.transpose());
@@ -195,7 +225,8 @@ void internalForce(const Section &sec, double l, const Vec8 &e, Vec8 &f, Mat8 *K
 
 double dampingForce(const Section &sec, double l, const Vec8 &e, const Vec8 &edot, Vec8 &fd, Mat8 *Kq, Mat8 *Dv)
 {
-  const GaussRule &g = gaussRule();
+  // The axial strain rate on the points of the axial strain, so that D stays etaA K_axial.
+  const QuadRule &g = quadRule(sec.axialIntegration);
   Vec8 fl = Vec8::Zero(); // local accumulator: fd may alias e or edot
   double power = 0;
   // With g_e = deps/de, g_K = dK/de and their Hessians H_e = (s1 s1^T) ⊗ I,
@@ -207,8 +238,9 @@ double dampingForce(const Section &sec, double l, const Vec8 &e, const Vec8 &edo
   Eigen::Matrix4d P, Q;
   if (Kq) P.setZero(), Q.setZero(), Kq->setZero();
   if (Dv) Dv->setZero();
-  for (int p = 0; p < kGaussPoints; ++p) {
-    const Eigen::Vector4d s1 = shapeValues(g.xi[p], l, 1), s2 = shapeValues(g.xi[p], l, 2);
+  for (int p = 0; p < g.size; ++p) {
+    const QuadPoint &q = g.points[p];
+    const Eigen::Vector4d s1 = shapeValues(q.xi, l, 1), s2 = shapeValues(q.xi, l, 2);
     Vec2 r1 = Vec2::Zero(), r2 = Vec2::Zero(), r1d = Vec2::Zero(), r2d = Vec2::Zero();
     for (int k = 0; k < 4; ++k) {
       r1 += s1[k] * e.segment<2>(2 * k);
@@ -216,8 +248,8 @@ double dampingForce(const Section &sec, double l, const Vec8 &e, const Vec8 &edo
       r1d += s1[k] * edot.segment<2>(2 * k);
       r2d += s2[k] * edot.segment<2>(2 * k);
     }
-    const double wx = g.w[p] * l;
-    const double ca = wx * sec.EA * sec.etaA, cb = wx * sec.EI * sec.etaB;
+    const double wx = q.w * l;
+    const double ca = wx * sec.EA * sec.etaA * q.axial, cb = wx * sec.EI * sec.etaB * q.bending;
     const double iJ2 = 1.0 / r1.squaredNorm();
     const double K = cross(r1, r2) * iJ2;
     const double epsdot = r1.dot(r1d);

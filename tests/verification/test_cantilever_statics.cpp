@@ -5,6 +5,9 @@
 #include "support.hpp"
 
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <string>
 
 using namespace boomdyn;
 using namespace boomdyn::testing;
@@ -51,6 +54,80 @@ Elastica elastica(double k)
   e.v = 1.0 - 2.0 * (std::comp_ellint_2(p) - std::ellint_2(p, theta1)) / std::sqrt(k);
   e.u = 1.0 - std::sqrt(2.0 * std::sin(phi0) / k);
   return e;
+}
+
+// Extensible elastica of the element's own continuum model (docs/model.md
+// §1.1): r' = lambda (cos th, sin th), Green strain eps = (lambda^2 - 1)/2,
+// curvature K = r' x r'' / |r'|^2 = th'. With the tip force (0, -P),
+// stationarity of U - F.r(L) gives, with s the undeformed arc length,
+//   EA eps lambda = -P sin th   (axial force balance, solved for lambda),
+//   EI th'' = P lambda cos th,  th(0) = 0, th'(L) = 0,
+// solved by shooting on th'(0) with RK4 on 4000 steps (error ~1e-13).
+Elastica extensibleElastica(double k, double axialRatio)
+{
+  // Lengths in L, forces in EI/L^2: th'' = k lambda cos th, (lambda^3 - lambda)/2 = -(k/axialRatio) sin th.
+  const double c = k / axialRatio;
+  const auto stretch = [&](double th) {
+    double lam = 1.0;
+    for (int i = 0; i < 50; ++i) {
+      const double g = 0.5 * (lam * lam * lam - lam) + c * std::sin(th), dg = 0.5 * (3 * lam * lam - 1);
+      const double step = g / dg;
+      lam -= step;
+      if (std::abs(step) < 1e-16) break;
+    }
+    return lam;
+  };
+  struct State {
+    double th, dth, x, y;
+  };
+  const auto rate = [&](const State &z) {
+    const double lam = stretch(z.th);
+    return State{z.dth, k * lam * std::cos(z.th), lam * std::cos(z.th), lam * std::sin(z.th)};
+  };
+  const auto shoot = [&](double slope0) {
+    const int steps = 4000;
+    const double h = 1.0 / steps;
+    State z{0, slope0, 0, 0};
+    const auto axpy = [](const State &a, double t, const State &b) {
+      return State{a.th + t * b.th, a.dth + t * b.dth, a.x + t * b.x, a.y + t * b.y};
+    };
+    for (int i = 0; i < steps; ++i) {
+      const State k1 = rate(z), k2 = rate(axpy(z, h / 2, k1)), k3 = rate(axpy(z, h / 2, k2)), k4 = rate(axpy(z, h, k3));
+      z = State{z.th + h / 6 * (k1.th + 2 * k2.th + 2 * k3.th + k4.th),
+                z.dth + h / 6 * (k1.dth + 2 * k2.dth + 2 * k3.dth + k4.dth),
+                z.x + h / 6 * (k1.x + 2 * k2.x + 2 * k3.x + k4.x), z.y + h / 6 * (k1.y + 2 * k2.y + 2 * k3.y + k4.y)};
+    }
+    return z;
+  };
+  // th'(L) grows with th'(0) in [-k lambda_max, 0]: bisection.
+  double lo = -2.0 * k, hi = 0.0;
+  for (int i = 0; i < 200; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    (shoot(mid).dth < 0 ? lo : hi) = mid;
+  }
+  const State tip = shoot(0.5 * (lo + hi));
+  return Elastica{-tip.y, 1.0 - tip.x};
+}
+
+// Relative tip error of a static cantilever run against a reference.
+double tipError(const StaticOutcome &out, const Elastica &ref)
+{
+  const double v = -out.sensors[0].position.y() / L, u = 1.0 - out.sensors[0].position.x() / L;
+  return std::hypot(v - ref.v, u - ref.u) / std::hypot(ref.v, ref.u);
+}
+
+// Reference of the locking study: extensible below EA L^2/EI = 1e9,
+// inextensible from there on (they differ by ~k / (EA L^2/EI)).
+Elastica lockingReference(double k, double axialRatio)
+{
+  return axialRatio < 1e9 ? extensibleElastica(k, axialRatio) : elastica(k);
+}
+
+StaticOutcome runCantilever(int elements, double k, double axialRatio, bool reduced)
+{
+  Scene scene = cantilever(elements, k * EI / (L * L), axialRatio * EI / (L * L), static_cast<int>(2 * k) + 2);
+  scene.bodies[0].section.reducedAxialIntegration = reduced;
+  return runStatic(scene);
 }
 
 } // namespace
@@ -112,4 +189,85 @@ TEST(CantileverStatics, ElasticaReferenceMatchesPublishedTable)
   EXPECT_NEAR(elastica(2.0).u, 0.16064, 2e-5);
   EXPECT_NEAR(elastica(10.0).v, 0.81061, 2e-5);
   EXPECT_NEAR(elastica(10.0).u, 0.55500, 2e-5);
+}
+
+TEST(CantileverStatics, ExtensibleElasticaApproachesInextensible)
+{
+  // The shooting reference against the closed form: the difference is the
+  // stretch, O(k / (EA L^2/EI)), and the integration error (~1e-13).
+  for (double k : {1.0, 3.0, 10.0}) {
+    const Elastica inext = elastica(k), ext = extensibleElastica(k, 1e11);
+    EXPECT_NEAR(ext.v, inext.v, 1e-9) << "k = " << k;
+    EXPECT_NEAR(ext.u, inext.u, 1e-9) << "k = " << k;
+    const Elastica soft = extensibleElastica(k, 1e3);
+    EXPECT_GT(std::abs(soft.v - inext.v), 1e-4) << "the stretch must show at EA L^2/EI = 1e3";
+  }
+}
+
+TEST(CantileverStatics, ReducedAxialIntegrationRemovesCoarseMeshLocking)
+{
+  // docs/verification.md "Membrane locking", PL^2/EI = 3. With the axial
+  // energy on 3 Gauss points the error no longer grows with EA L^2/EI: at 8
+  // elements it stays <= 3e-3 from 1e5 to 1e11 (full integration: 6.8e-2 at
+  // 1e11), at 16 elements <= 8e-4. In the unlocked range (1e5) the issue's
+  // target holds: error at 16 elements <= 2e-4, rate (8 -> 16) >= 3.5. NOT
+  // reached (measured, see the docs): that target at 1e7 and above, where
+  // both integrations converge at rate ~2 towards the elastica.
+  const double k = 3.0;
+  int rank;
+  MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
+  for (double ratio : {1e5, 1e7, 1e9, 1e11}) {
+    const Elastica ref = lockingReference(k, ratio);
+    const StaticOutcome coarse = runCantilever(8, k, ratio, true), fine = runCantilever(16, k, ratio, true);
+    ASSERT_TRUE(coarse.converged && fine.converged) << "EA L^2/EI = " << ratio;
+    if (rank) continue;
+    const double e8 = tipError(coarse, ref), e16 = tipError(fine, ref), rate = std::log2(e8 / e16);
+    PetscPrintf(PETSC_COMM_WORLD, "  EA L^2/EI = %.0e, reduced: error %.2e (8), %.2e (16), rate %.2f\n", ratio, e8, e16,
+                rate);
+    EXPECT_LT(e8, 3e-3) << "EA L^2/EI = " << ratio;
+    EXPECT_LT(e16, 8e-4) << "EA L^2/EI = " << ratio;
+    if (ratio == 1e5) {
+      EXPECT_LT(e16, 2e-4);
+      EXPECT_GT(rate, 3.5);
+    }
+  }
+  // The locking that reduced integration removes: full integration at 1e11, 8 elements.
+  const StaticOutcome locked = runCantilever(8, k, 1e11, false);
+  ASSERT_TRUE(locked.converged);
+  if (!rank) EXPECT_GT(tipError(locked, lockingReference(k, 1e11)), 1e-2);
+}
+
+TEST(CantileverStatics, MembraneLockingStudy)
+{
+  // The full table of docs/verification.md (about a minute): run with
+  // BOOMDYN_LOCKING_STUDY=1 build/tests/verification_tests --gtest_filter='*LockingStudy'.
+  if (!std::getenv("BOOMDYN_LOCKING_STUDY")) GTEST_SKIP() << "set BOOMDYN_LOCKING_STUDY=1 to run the study";
+  int rank;
+  MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
+  for (double k : {1.0, 3.0, 10.0})
+    for (double ratio : {1e5, 1e7, 1e9, 1e11}) {
+      const Elastica ref = lockingReference(k, ratio);
+      for (bool reduced : {false, true}) {
+        std::string line;
+        double previous = 0;
+        for (int n : {2, 4, 8, 16, 32}) {
+          const StaticOutcome out = runCantilever(n, k, ratio, reduced);
+          char cell[64];
+          if (!out.converged) {
+            std::snprintf(cell, sizeof cell, " | no conv.");
+            previous = 0;
+          } else {
+            const double err = tipError(out, ref);
+            if (previous > 0)
+              std::snprintf(cell, sizeof cell, " | %.1e (%.1f)", err, std::log2(previous / err));
+            else
+              std::snprintf(cell, sizeof cell, " | %.1e", err);
+            previous = err;
+          }
+          line += cell;
+        }
+        if (!rank)
+          PetscPrintf(PETSC_COMM_WORLD, "| %g | %.0e | %s%s |\n", k, ratio, reduced ? "reduced" : "full", line.c_str());
+      }
+    }
 }
