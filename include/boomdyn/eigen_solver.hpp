@@ -48,6 +48,11 @@ PetscInt finiteModeBound(const Model &model);
 // assembler.createMatrix() (same pattern). Leaves the assembler's offsets at q.
 PetscErrorCode assemblePencil(Assembler &assembler, double t, Vec q, Vec lambda, Mat A, Mat B);
 
+// The state x = [q | lambda / sigma] at which the pencil is assembled
+// (x made by assembler.createVector()), and sigma, the scale of the
+// constraint blocks (a typical stiffness diagonal).
+PetscErrorCode pencilState(Assembler &assembler, Vec q, Vec lambda, Vec x, double *sigma);
+
 // Coordinate part of v on rank 0 (empty elsewhere), divided by its entry of
 // largest magnitude (as ModalResult::shapes). Collective.
 PetscErrorCode gatherShape(Assembler &assembler, Vec v, std::vector<double> *shape);

@@ -1,0 +1,210 @@
+#include "boomdyn/damped_eigen_solver.hpp"
+
+#include "boomdyn/direct_solver.hpp"
+#include "boomdyn/eigen_solver.hpp"
+#include "boomdyn/gather.hpp"
+#include "boomdyn/log_events.hpp"
+#include "boomdyn/petsc_handle.hpp"
+
+#include <slepcpep.h>
+
+#include <algorithm>
+#include <cmath>
+#include <complex>
+#include <cstdio>
+
+namespace boomdyn {
+
+template <>
+struct PetscDestroyer<PEP> {
+  static PetscErrorCode destroy(PEP *pep) { return PEPDestroy(pep); }
+};
+
+PetscErrorCode assembleDamping(Assembler &assembler, double t, Vec q, Vec lambda, Mat D)
+{
+  PetscHandle<Vec> x, vc;
+  double sigma;
+  PetscFunctionBeginUser;
+  PetscCall(assembler.createVector(x.address()));
+  PetscCall(pencilState(assembler, q, lambda, x, &sigma));
+  // q = x (cQ = 0) and v = vc + x = 0 with vc = -x: D is taken at rest, the
+  // state about which the modes are defined. First-order states keep a zero
+  // rate (cZ = 0, vc = 0 there).
+  PetscCall(VecDuplicate(x, vc.address()));
+  PetscCall(VecCopy(x, vc));
+  PetscCall(VecScale(vc, -1.0));
+  {
+    PetscInt lo, hi;
+    PetscCall(VecGetOwnershipRange(vc, &lo, &hi));
+    for (PetscInt i : assembler.model().firstOrderCoordinates())
+      if (i >= lo && i < hi) PetscCall(VecSetValue(vc, i, 0.0, INSERT_VALUES));
+    PetscCall(VecAssemblyBegin(vc));
+    PetscCall(VecAssemblyEnd(vc));
+  }
+  AssemblyContext ctx;
+  ctx.t = t;
+  ctx.sigma = sigma;
+  ctx.kin = {0.0, 1.0, 0.0, 0.0};
+  ctx.constraintBlocks = false; // same pattern as the pencil, zeros in the constraint blocks
+  PetscCall(assembler.setOffsets(x, vc, nullptr));
+  PetscCall(assembler.evaluate(ctx, x, nullptr, D));
+  PetscCall(assembler.setOffsets(x, nullptr, nullptr)); // as assemblePencil leaves them
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode hasDamping(Assembler &assembler, double t, Vec q, Vec lambda, bool *damped)
+{
+  PetscHandle<Mat> D;
+  PetscReal norm;
+  PetscFunctionBeginUser;
+  PetscCall(assembler.createMatrix(D.address()));
+  PetscCall(assembleDamping(assembler, t, q, lambda, D));
+  PetscCall(MatNorm(D, NORM_FROBENIUS, &norm));
+  *damped = norm > 0;
+  PetscFunctionReturn(0);
+}
+
+namespace {
+
+struct Candidate {
+  PetscInt index;
+  double re, im;
+};
+
+// Modes among the converged eigenvalues: finite (an infinite eigenvalue of
+// the constraint rows maps to an operator eigenvalue theta = 1/(lambda -
+// target) at round-off level against the largest |theta|), oscillating
+// (|Im| above round-off of |lambda|), and the member of its conjugate pair
+// with Im > 0; ascending damped frequency.
+std::vector<Candidate> acceptModes(const std::vector<double> &re, const std::vector<double> &im, double target,
+                                   int *dropped)
+{
+  double thetaMax = 0;
+  for (std::size_t i = 0; i < re.size(); ++i)
+    if (std::isfinite(re[i]) && std::isfinite(im[i]))
+      thetaMax = std::max(thetaMax, 1.0 / std::abs(std::complex<double>(re[i] - target, im[i])));
+  std::vector<Candidate> modes;
+  *dropped = 0;
+  for (std::size_t i = 0; i < re.size(); ++i) {
+    const std::complex<double> l(re[i], im[i]);
+    const bool finite = std::isfinite(re[i]) && std::isfinite(im[i]) &&
+                        1.0 / std::abs(l - target) >= 1e-12 * thetaMax;
+    if (!finite || !(std::abs(im[i]) > 1e-10 * std::abs(l))) {
+      ++*dropped;
+      continue;
+    }
+    if (im[i] > 0) modes.push_back({(PetscInt)i, re[i], im[i]});
+  }
+  std::sort(modes.begin(), modes.end(), [](const Candidate &a, const Candidate &b) { return a.im < b.im; });
+  return modes;
+}
+
+} // namespace
+
+PetscErrorCode solveDampedModes(Assembler &assembler, double t, Vec q, Vec lambda, int count,
+                                DampedModalResult *result, const DampedModalOptions &options)
+{
+  PetscHandle<Mat> K, D, M;
+  PetscHandle<Vec> vr, vi, gr, gi;
+  PetscHandle<VecScatter> toZero;
+  PetscHandle<PEP> pep;
+  ST st;
+  KSP ksp;
+  PetscFunctionBeginUser;
+  PetscCall(PetscLogEventBegin(logEvents().eigen, 0, 0, 0, 0));
+  PetscCall(assembler.createMatrix(K.address()));
+  PetscCall(assembler.createMatrix(D.address()));
+  PetscCall(assembler.createMatrix(M.address()));
+  PetscCall(assembleDamping(assembler, t, q, lambda, D));
+  PetscCall(assemblePencil(assembler, t, q, lambda, K, M));
+
+  // 2 nf finite eigenvalues (nf as in the symmetric pencil); the Krylov
+  // subspace of the linearization must not exceed them (see solveModes).
+  const PetscInt finiteBound = finiteModeBound(assembler.model());
+  PetscCheck(count <= finiteBound, assembler.comm(), PETSC_ERR_USER_INPUT,
+             "damped eigen-analysis: %d modes requested, but the model has at most %" PetscInt_FMT
+             " finite modes; ask for fewer modes (modal: count, tracking: count)",
+             count, finiteBound);
+
+  Mat ops[3] = {K, D, M};
+  PetscCall(PEPCreate(assembler.comm(), pep.address()));
+  PetscCall(PEPSetOptionsPrefix(pep, "modal_"));
+  PetscCall(PEPSetOperators(pep, 3, ops));
+  PetscCall(PEPSetProblemType(pep, PEP_GENERAL));
+  PetscCall(PEPSetType(pep, PEPTOAR));
+  PetscCall(PEPSetTolerances(pep, 1e-12, 500));
+  PetscCall(PEPSetTarget(pep, options.target));
+  PetscCall(PEPSetWhichEigenpairs(pep, PEP_TARGET_MAGNITUDE));
+  PetscCall(PEPGetST(pep, &st));
+  PetscCall(STSetType(st, STSINVERT));
+  PetscCall(STGetKSP(st, &ksp));
+  PetscCall(useDirectSolver(ksp));
+
+  std::vector<Candidate> modes;
+  std::vector<double> re, im;
+  for (PetscInt nev = 2 * count;;) {
+    const PetscInt ncv = std::max(std::min(std::max(2 * nev, nev + 15), 2 * finiteBound), nev + 1);
+    PetscCall(PEPSetDimensions(pep, nev, ncv, PETSC_DEFAULT));
+    PetscCall(PEPSetFromOptions(pep));
+    PetscCall(PEPSolve(pep));
+    PetscInt nconv;
+    PetscCall(PEPGetConverged(pep, &nconv));
+    re.assign(nconv, 0.0);
+    im.assign(nconv, 0.0);
+    for (PetscInt i = 0; i < nconv; ++i) PetscCall(PEPGetEigenpair(pep, i, &re[i], &im[i], nullptr, nullptr));
+    int dropped;
+    modes = acceptModes(re, im, options.target, &dropped);
+    if ((PetscInt)modes.size() >= count) break;
+    PetscCheck(nev < 2 * finiteBound, assembler.comm(), PETSC_ERR_NOT_CONVERGED,
+               "damped eigen-analysis: only %zu oscillating modes of %d requested were found (%" PetscInt_FMT
+               " eigenvalues converged, %d infinite or non-oscillating)",
+               modes.size(), count, nconv, dropped);
+    nev = std::min(2 * finiteBound, nev + 2 * (count - (PetscInt)modes.size()) + 2);
+  }
+
+  PetscMPIInt rank;
+  PetscCallMPI(MPI_Comm_rank(assembler.comm(), &rank));
+  PetscCall(MatCreateVecs(K, vr.address(), nullptr));
+  PetscCall(VecDuplicate(vr, vi.address()));
+  PetscCall(VecScatterCreateToZero(vr, toZero.address(), gr.address()));
+  PetscCall(VecDuplicate(gr, gi.address()));
+  const PetscInt nq = assembler.model().numCoordinates();
+  *result = DampedModalResult{};
+  for (int k = 0; k < count; ++k) {
+    const Candidate &c = modes[k];
+    PetscScalar kr, ki;
+    PetscReal err;
+    PetscCall(PEPGetEigenpair(pep, c.index, &kr, &ki, vr, vi));
+    PetscCall(PEPComputeError(pep, c.index, PEP_ERROR_BACKWARD, &err));
+    const double modulus = std::hypot(c.re, c.im);
+    PetscCheck(err < 1e-8, assembler.comm(), PETSC_ERR_NOT_CONVERGED,
+               "damped eigen-analysis: mode %d (%.6g rad/s) did not converge (backward error %.3g)", k + 1, modulus,
+               (double)err);
+    result->dampedOmega.push_back(c.im);
+    result->omega.push_back(modulus);
+    result->dampingRatio.push_back(-c.re / modulus);
+    result->residuals.push_back(err);
+    std::vector<double> real, imag;
+    PetscCall(scatterValues(toZero, vr, gr, real));
+    PetscCall(scatterValues(toZero, vi, gi, imag));
+    if (rank == 0) {
+      // The phase is free: rotate the vector so that its largest entry is
+      // real, then keep the real part (independent of the rank count).
+      std::size_t big = 0;
+      for (std::size_t i = 0; i < (std::size_t)nq; ++i)
+        if (std::hypot(real[i], imag[i]) > std::hypot(real[big], imag[big])) big = i;
+      const double phase = std::atan2(imag[big], real[big]);
+      std::vector<double> shape(nq);
+      for (std::size_t i = 0; i < (std::size_t)nq; ++i)
+        shape[i] = real[i] * std::cos(phase) + imag[i] * std::sin(phase);
+      const double scale = shape[big];
+      if (scale != 0)
+        for (double &s : shape) s /= scale;
+      result->shapes.push_back(std::move(shape));
+    }
+  }
+  PetscCall(PetscLogEventEnd(logEvents().eigen, 0, 0, 0, 0));
+  PetscFunctionReturn(0);
+}
+
+} // namespace boomdyn
