@@ -16,8 +16,8 @@
 namespace boomdyn {
 
 struct DampedModalResult {
-  std::vector<double> dampedOmega;  // omega_d = |Im lambda| (rad/s), ascending
-  std::vector<double> omega;        // undamped-equivalent |lambda| (rad/s)
+  std::vector<double> dampedOmega;  // omega_d = |Im lambda| (rad/s)
+  std::vector<double> omega;        // undamped-equivalent |lambda| (rad/s), ascending
   std::vector<double> dampingRatio; // zeta = -Re lambda / |lambda|
   std::vector<double> residuals;    // relative residual norms of the pairs
   // Real parts of the coordinate parts of the eigenvectors, gathered on rank 0
@@ -41,7 +41,8 @@ PetscErrorCode assembleDamping(Assembler &assembler, double t, Vec q, Vec lambda
 // True if D at (t, q, lambda) has a nonzero entry (collective).
 PetscErrorCode hasDamping(Assembler &assembler, double t, Vec q, Vec lambda, bool *damped);
 
-// The `count` lowest damped modes (by damped frequency) of the linearization
+// The `count` lowest damped modes (by |lambda|, the undamped-equivalent
+// frequency; for light damping the order of omega_d too) of the linearization
 // at (t, q, lambda): one of each conjugate pair; infinite, non-finite and
 // non-oscillating (real, overdamped) eigenvalues are dropped. Options prefix
 // "modal_": -modal_pep_target, -modal_pep_view, -modal_st_ksp_...
