@@ -19,6 +19,12 @@ struct ModalResult {
   std::vector<double> frequencyHz;       // sqrt(max(omega2,0)) / 2 pi
   std::vector<std::vector<double>> shapes; // coordinates part, gathered on rank 0 (empty elsewhere), max-norm 1
   std::vector<double> residuals;         // relative residual norms ||A x - w B x|| / ||x||
+  // Damped modes (damped_eigen_solver.hpp), only when the model has damping;
+  // the k lowest by |lambda|, solved independently of the undamped ones
+  // (for light damping entry k is the damped version of undamped mode k).
+  std::vector<double> dampedFrequencyHz; // omega_d / 2 pi
+  std::vector<double> undampedEquivalentHz; // |lambda| / 2 pi
+  std::vector<double> dampingRatio;      // -Re lambda / |lambda|
   // Eigenvectors in the layout of x with the multiplier part zeroed (only
   // when asked for; owned here).
   std::vector<PetscHandle<Vec>> vectors;

@@ -339,6 +339,11 @@ void ResultsWriter::writeModeArrays(double t, const ModalResult &modes)
   std::vector<double> shapes;
   for (const auto &s : modes.shapes) shapes.insert(shapes.end(), s.begin(), s.end());
   file_->writeArray("/modal/shapes", shapes, {k, nq});
+  if (!modes.dampingRatio.empty()) { // a damped model (docs/output.md)
+    file_->writeArray("/modal/damped_frequencies_hz", modes.dampedFrequencyHz, {k});
+    file_->writeArray("/modal/undamped_equivalent_hz", modes.undampedEquivalentHz, {k});
+    file_->writeArray("/modal/damping_ratio", modes.dampingRatio, {k});
+  }
   file_->setAttribute("/modal", "state_time", t);
   file_->flush();
 }
