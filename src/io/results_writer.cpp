@@ -394,6 +394,11 @@ PetscErrorCode ResultsWriter::appendTracking(const TrackedModes &m, bool writeSh
     file_->appendScalar("/tracking/tracked_hz", m.trackedHz);
     file_->appendScalar("/tracking/mac", m.mac);
     file_->appendScalarInt("/tracking/tracked_index", m.index);
+    if (m.damped) { // a damped model (docs/output.md)
+      file_->appendScalar("/tracking/tracked_damped_hz", m.trackedDampedHz);
+      file_->appendScalar("/tracking/damping_ratio", m.trackedDampingRatio);
+      file_->appendScalar("/tracking/damped_mac", m.dampedMac);
+    }
     if (writeShape) {
       file_->appendScalar("/tracking/shape_time", m.t);
       file_->appendRow("/tracking/shapes", m.shape.data(), m.shape.size());
