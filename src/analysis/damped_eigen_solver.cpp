@@ -197,7 +197,7 @@ PetscErrorCode solveDampedModes(Assembler &assembler, double t, Vec q, Vec lambd
     for (PetscInt i = 0; i < nconv; ++i) PetscCall(PEPGetEigenpair(pep, i, &re[i], &im[i], nullptr, nullptr));
     int dropped;
     modes = acceptModes(re, im, options.target, &dropped);
-    if ((PetscInt)modes.size() >= count) break;
+    if ((PetscInt)modes.size() >= count || options.allowFewer) break;
     PetscCheck(nev < 2 * finiteBound, assembler.comm(), PETSC_ERR_NOT_CONVERGED,
                "damped eigen-analysis: only %zu oscillating modes of %d requested were found (%" PetscInt_FMT
                " eigenvalues converged, %d infinite or non-oscillating)",
@@ -213,12 +213,14 @@ PetscErrorCode solveDampedModes(Assembler &assembler, double t, Vec q, Vec lambd
   PetscCall(VecDuplicate(gr, gi.address()));
   const PetscInt nq = assembler.model().numCoordinates();
   *result = DampedModalResult{};
-  for (int k = 0; k < count; ++k) {
+  for (int k = 0, found = 0; k < (int)modes.size() && found < count; ++k) {
     const Candidate &c = modes[k];
     PetscScalar kr, ki;
     PetscReal err;
     PetscCall(PEPGetEigenpair(pep, c.index, &kr, &ki, vr, vi));
     PetscCall(PEPComputeError(pep, c.index, PEP_ERROR_BACKWARD, &err));
+    if (options.allowFewer && !(err < 1e-8)) continue;
+    ++found;
     // Refined by the quadratic Rayleigh quotient: the root of
     // x^H (lambda^2 M + lambda D + K) x = 0 nearest the computed lambda. Its
     // error is of the order of the squared eigenvector error, while the

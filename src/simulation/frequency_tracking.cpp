@@ -60,8 +60,12 @@ PetscErrorCode FrequencyTracking::trackDamped(const RunState &s, TrackedModes *m
 {
   DampedModalResult dm;
   PetscFunctionBeginUser;
-  PetscCall(solveDampedModes(sim_.assembler(), s.t, s.q, s.lambda, sim_.scene().tracking.count, &dm));
+  DampedModalOptions options;
+  options.allowFewer = true; // heavy damping: few oscillating modes (damped_eigen_solver.hpp)
+  PetscCall(solveDampedModes(sim_.assembler(), s.t, s.q, s.lambda, sim_.scene().tracking.count, &dm, options));
   modes->damped = true;
+  // No oscillating damped mode found: NaN in the file.
+  modes->trackedDampedHz = modes->trackedDampingRatio = std::nan("");
   const auto dot = [](const std::vector<double> &a, const std::vector<double> &b) {
     double d = 0;
     for (std::size_t i = 0; i < std::min(a.size(), b.size()); ++i) d += a[i] * b[i];
