@@ -62,3 +62,4 @@ set_tests_properties(architecture.layers architecture.layers_self_test PROPERTIE
 boomdyn_script_test(postprocess.output_channels postprocess/test_output_channels.py postprocess)
 boomdyn_script_test(regression.help regression/test_help.py regression)
 boomdyn_script_test(regression.option_values regression/test_option_values.py regression)
+boomdyn_script_test(regression.damped_modal_output regression/test_damped_modal_output.py regression)

@@ -19,6 +19,12 @@ struct ModalResult {
   std::vector<double> frequencyHz;       // sqrt(max(omega2,0)) / 2 pi
   std::vector<std::vector<double>> shapes; // coordinates part, gathered on rank 0 (empty elsewhere), max-norm 1
   std::vector<double> residuals;         // relative residual norms ||A x - w B x|| / ||x||
+  // Damped modes (damped_eigen_solver.hpp), only when the model has damping;
+  // the k lowest by |lambda|, solved independently of the undamped ones
+  // (for light damping entry k is the damped version of undamped mode k).
+  std::vector<double> dampedFrequencyHz; // omega_d / 2 pi
+  std::vector<double> undampedEquivalentHz; // |lambda| / 2 pi
+  std::vector<double> dampingRatio;      // -Re lambda / |lambda|
   // Eigenvectors in the layout of x with the multiplier part zeroed (only
   // when asked for; owned here).
   std::vector<PetscHandle<Vec>> vectors;
@@ -47,6 +53,11 @@ PetscInt finiteModeBound(const Model &model);
 // A and B of the pencil at (t, q, lambda) into matrices made by
 // assembler.createMatrix() (same pattern). Leaves the assembler's offsets at q.
 PetscErrorCode assemblePencil(Assembler &assembler, double t, Vec q, Vec lambda, Mat A, Mat B);
+
+// The state x = [q | lambda / sigma] at which the pencil is assembled
+// (x made by assembler.createVector()), and sigma, the scale of the
+// constraint blocks (a typical stiffness diagonal).
+PetscErrorCode pencilState(Assembler &assembler, Vec q, Vec lambda, Vec x, double *sigma);
 
 // Coordinate part of v on rank 0 (empty elsewhere), divided by its entry of
 // largest magnitude (as ModalResult::shapes). Collective.

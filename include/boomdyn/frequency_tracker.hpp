@@ -25,6 +25,12 @@ struct TrackedModes {
   int index = 0;                   // its position in frequencyHz
   std::vector<double> shape;       // its shape (rank 0), max-norm 1
   bool refined = false;            // from refinement (false: full eigen-solve)
+  // Damped models (FrequencyTracking): the damped mode (SLEPc PEP) whose
+  // shape has the largest MAC against the followed shape; rank 0 only.
+  bool damped = false;
+  double trackedDampedHz = 0;      // its damped frequency omega_d / 2 pi
+  double trackedDampingRatio = 0;  // its damping ratio
+  double dampedMac = 0;            // MAC of its shape (real part) against the followed shape
 };
 
 class FrequencyTracker {

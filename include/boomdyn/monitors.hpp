@@ -96,10 +96,12 @@ public:
 
 private:
   PetscErrorCode track(const RunState &s, double h);
+  PetscErrorCode trackDamped(const RunState &s, TrackedModes *modes);
 
   Simulation &sim_;
   ResultsWriter &writer_;
   std::unique_ptr<FrequencyTracker> tracker_;
+  int damped_ = -1; // the model has damping (D != 0): 1, 0, -1 not yet known
   double interval_, next_ = 0;
   std::vector<double> shapeTimes_;
 };

@@ -86,10 +86,9 @@ PetscInt finiteModeBound(const Model &model)
   return model.numCoordinates() - model.numMultipliers() - static_cast<PetscInt>(model.firstOrderCoordinates().size());
 }
 
-PetscErrorCode assemblePencil(Assembler &assembler, double t, Vec q, Vec lambda, Mat A, Mat B)
+PetscErrorCode pencilState(Assembler &assembler, Vec q, Vec lambda, Vec x, double *sigmaOut)
 {
   const PetscInt nq = assembler.model().numCoordinates();
-  PetscHandle<Vec> x;
   PetscFunctionBeginUser;
   // x = [q | lambda / sigma]. The constraint blocks are scaled by sigma, a
   // typical stiffness diagonal: with sigma = 1 they are ~1e-9 of K for steel
@@ -98,7 +97,6 @@ PetscErrorCode assemblePencil(Assembler &assembler, double t, Vec q, Vec lambda,
   PetscReal massScale, stiffScale;
   PetscCall(assembler.characteristicScales(q, &massScale, &stiffScale));
   const double sigma = stiffScale > 0 ? stiffScale : 1.0;
-  PetscCall(assembler.createVector(x.address()));
   {
     PetscInt lo, hi;
     const PetscScalar *qa, *la;
@@ -112,6 +110,17 @@ PetscErrorCode assemblePencil(Assembler &assembler, double t, Vec q, Vec lambda,
     PetscCall(VecRestoreArrayRead(lambda, &la));
     PetscCall(VecRestoreArrayRead(q, &qa));
   }
+  *sigmaOut = sigma;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode assemblePencil(Assembler &assembler, double t, Vec q, Vec lambda, Mat A, Mat B)
+{
+  PetscHandle<Vec> x;
+  double sigma;
+  PetscFunctionBeginUser;
+  PetscCall(assembler.createVector(x.address()));
+  PetscCall(pencilState(assembler, q, lambda, x, &sigma));
   AssemblyContext ctx;
   ctx.t = t;
   ctx.sigma = sigma;

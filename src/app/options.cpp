@@ -330,7 +330,7 @@ bool isGlobalPetscOption(const std::string &name)
 bool isPetscOption(const std::string &name)
 {
   if (isGlobalPetscOption(name)) return true;
-  static const char *const families[] = {"ts_", "snes_", "ksp_", "pc_", "mat_", "eps_", "st_", "bv_", "ds_", "rg_",
+  static const char *const families[] = {"ts_", "snes_", "ksp_", "pc_", "mat_", "eps_", "pep_", "st_", "bv_", "ds_", "rg_",
                                          "fn_", "boom_"};
   for (const char *prefix : {"-", "-static_", "-modal_"})
     for (const char *f : families)

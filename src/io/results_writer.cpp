@@ -339,6 +339,11 @@ void ResultsWriter::writeModeArrays(double t, const ModalResult &modes)
   std::vector<double> shapes;
   for (const auto &s : modes.shapes) shapes.insert(shapes.end(), s.begin(), s.end());
   file_->writeArray("/modal/shapes", shapes, {k, nq});
+  if (!modes.dampingRatio.empty()) { // a damped model (docs/output.md)
+    file_->writeArray("/modal/damped_frequencies_hz", modes.dampedFrequencyHz, {k});
+    file_->writeArray("/modal/undamped_equivalent_hz", modes.undampedEquivalentHz, {k});
+    file_->writeArray("/modal/damping_ratio", modes.dampingRatio, {k});
+  }
   file_->setAttribute("/modal", "state_time", t);
   file_->flush();
 }
@@ -389,6 +394,11 @@ PetscErrorCode ResultsWriter::appendTracking(const TrackedModes &m, bool writeSh
     file_->appendScalar("/tracking/tracked_hz", m.trackedHz);
     file_->appendScalar("/tracking/mac", m.mac);
     file_->appendScalarInt("/tracking/tracked_index", m.index);
+    if (m.damped) { // a damped model (docs/output.md)
+      file_->appendScalar("/tracking/tracked_damped_hz", m.trackedDampedHz);
+      file_->appendScalar("/tracking/damping_ratio", m.trackedDampingRatio);
+      file_->appendScalar("/tracking/damped_mac", m.dampedMac);
+    }
     if (writeShape) {
       file_->appendScalar("/tracking/shape_time", m.t);
       file_->appendRow("/tracking/shapes", m.shape.data(), m.shape.size());

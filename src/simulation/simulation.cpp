@@ -1,11 +1,13 @@
 #include "boomdyn/simulation.hpp"
 
+#include "boomdyn/damped_eigen_solver.hpp"
 #include "boomdyn/monitors.hpp"
 #include "boomdyn/slider_tracker.hpp"
 
 #include <slepcsys.h>
 
 #include <algorithm>
+#include <cmath>
 
 namespace boomdyn {
 
@@ -92,12 +94,29 @@ PetscErrorCode Simulation::modalAnalysis(double t, Vec q, Vec lambda)
   PetscCall(SlepcInitialize(nullptr, nullptr, nullptr, nullptr));
   ModalResult modes;
   PetscCall(solveModes(assembler_, t, q, lambda, scene_.modal.count, &modes));
+  // A damped model also gets its damped modes (SLEPc PEP, docs/model.md §5).
+  bool damped;
+  PetscCall(hasDamping(assembler_, t, q, lambda, &damped));
+  if (damped) {
+    DampedModalResult dm;
+    PetscCall(solveDampedModes(assembler_, t, q, lambda, scene_.modal.count, &dm));
+    for (std::size_t k = 0; k < dm.omega.size(); ++k) {
+      modes.dampedFrequencyHz.push_back(dm.dampedOmega[k] / (2.0 * M_PI));
+      modes.undampedEquivalentHz.push_back(dm.omega[k] / (2.0 * M_PI));
+      modes.dampingRatio.push_back(dm.dampingRatio[k]);
+    }
+  }
   for (auto &m : monitors_) PetscCall(m->modes(t, modes));
   if (!options_.quiet) {
     PetscCall(PetscPrintf(comm_, "modes at t = %g s:\n", t));
-    for (std::size_t k = 0; k < modes.frequencyHz.size(); ++k)
-      PetscCall(PetscPrintf(comm_, "  mode %2zu  f = %12.6f Hz  (relative residual %.1e)\n", k + 1,
+    for (std::size_t k = 0; k < modes.frequencyHz.size(); ++k) {
+      PetscCall(PetscPrintf(comm_, "  mode %2zu  f = %12.6f Hz  (relative residual %.1e)", k + 1,
                             modes.frequencyHz[k], modes.residuals[k]));
+      if (damped)
+        PetscCall(PetscPrintf(comm_, "  damped: f_d = %12.6f Hz, zeta = %.6f", modes.dampedFrequencyHz[k],
+                              modes.dampingRatio[k]));
+      PetscCall(PetscPrintf(comm_, "\n"));
+    }
   }
   PetscFunctionReturn(0);
 }

@@ -3,6 +3,7 @@
 // Meaningful under mpiexec -n 2 (CTest entry mpi2.regression).
 #include "support.hpp"
 
+#include "boomdyn/damped_eigen_solver.hpp"
 #include "boomdyn/frequency_tracker.hpp"
 
 #include <slepcsys.h>
@@ -195,4 +196,62 @@ TEST(RankIndependence, MetisItemPartitionMatchesSingleRank)
   const double d = maxRelativeDifference(alone.finalState, distributed.finalState);
   PetscPrintf(PETSC_COMM_WORLD, "  extraction, METIS item partition on %d ranks vs 1: %.3e relative\n", size, d);
   EXPECT_LT(d, 1e-10);
+}
+
+// Damped modes (SLEPc PEP) of the damped scene above plus a spring-damper at
+// the tip (non-proportional damping), linearized at the initial state, on
+// the world communicator and on each rank alone.
+namespace {
+
+DampedModalResult dampedModesOn(const Scene &scene, MPI_Comm comm)
+{
+  Model model(scene);
+  Assembler assembler(model);
+  PetscHandle<Vec> q, lambda;
+  check(SlepcInitialize(nullptr, nullptr, nullptr, nullptr));
+  check(assembler.setUp(comm));
+  check(assembler.createVector(q.address()));
+  check(assembler.createVector(lambda.address()));
+  const std::vector<double> q0 = model.initialCoordinates();
+  PetscInt lo, hi;
+  check(VecGetOwnershipRange(q, &lo, &hi));
+  for (PetscInt i = lo; i < std::min<PetscInt>(hi, model.numCoordinates()); ++i)
+    check(VecSetValue(q, i, q0[i], INSERT_VALUES));
+  check(VecAssemblyBegin(q));
+  check(VecAssemblyEnd(q));
+  DampedModalResult modes;
+  check(solveDampedModes(assembler, 0.0, q, lambda, 5, &modes));
+  return modes;
+}
+
+} // namespace
+
+TEST(RankIndependence, DampedModesMatchSingleRank)
+{
+  PetscMPIInt size;
+  MPI_Comm_size(PETSC_COMM_WORLD, &size);
+  if (size == 1) GTEST_SKIP() << "run under mpiexec -n 2 (CTest: mpi2.regression)";
+  std::string text = kScene;
+  const auto damp = [&](const std::string &body, const std::string &keys) {
+    const std::size_t at = text.find("rhoA", text.find("name: " + body));
+    text.insert(text.find('}', at), keys);
+  };
+  // Light damping (a few % in the low modes), so that the low modes oscillate.
+  damp("lower", ", eta_axial: 2.0e-5, eta_bending: 4.0e-5");
+  damp("upper", ", damping_ratio: 0.02, damping_frequency: 30.0");
+  text.insert(text.find("dynamic:"),
+              "springs:\n  - {name: s, body: upper, at: 1.5, point: [3.5, -1.0], stiffness: 2.0e4, damping: 800}\n");
+  const Scene scene = parseScene(text, "rank-independence-damped-modes.yaml");
+  const DampedModalResult distributed = dampedModesOn(scene, PETSC_COMM_WORLD);
+  const DampedModalResult alone = dampedModesOn(scene, PETSC_COMM_SELF);
+  ASSERT_EQ(distributed.dampedOmega.size(), alone.dampedOmega.size());
+  double worst = 0;
+  for (std::size_t k = 0; k < alone.dampedOmega.size(); ++k) {
+    worst = std::max(worst, std::abs(distributed.dampedOmega[k] - alone.dampedOmega[k]) / alone.dampedOmega[k]);
+    worst = std::max(worst, std::abs(distributed.dampingRatio[k] - alone.dampingRatio[k]) / alone.dampingRatio[k]);
+    PetscPrintf(PETSC_COMM_WORLD, "  damped mode %zu: omega_d %.10g vs %.10g rad/s, zeta %.10g vs %.10g\n", k + 1,
+                distributed.dampedOmega[k], alone.dampedOmega[k], distributed.dampingRatio[k], alone.dampingRatio[k]);
+  }
+  PetscPrintf(PETSC_COMM_WORLD, "  damped modes, %d ranks vs 1: max relative difference %.3e\n", size, worst);
+  EXPECT_LT(worst, 1e-10);
 }
