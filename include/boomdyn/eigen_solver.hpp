@@ -63,4 +63,8 @@ PetscErrorCode pencilState(Assembler &assembler, Vec q, Vec lambda, Vec x, doubl
 // largest magnitude (as ModalResult::shapes). Collective.
 PetscErrorCode gatherShape(Assembler &assembler, Vec v, std::vector<double> *shape);
 
+// Divides a mode shape by its entry of largest magnitude, so that shapes
+// from runs on any number of ranks compare directly (sign and scale fixed).
+void normalizeShape(std::vector<double> &shape);
+
 } // namespace boomdyn

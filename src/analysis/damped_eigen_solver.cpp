@@ -250,9 +250,7 @@ PetscErrorCode solveDampedModes(Assembler &assembler, double t, Vec q, Vec lambd
       std::vector<double> shape(nq);
       for (std::size_t i = 0; i < (std::size_t)nq; ++i)
         shape[i] = real[i] * std::cos(phase) + imag[i] * std::sin(phase);
-      const double scale = shape[big];
-      if (scale != 0)
-        for (double &s : shape) s /= scale;
+      normalizeShape(shape);
       result->shapes.push_back(std::move(shape));
     }
   }

@@ -136,6 +136,15 @@ PetscErrorCode assemblePencil(Assembler &assembler, double t, Vec q, Vec lambda,
   PetscFunctionReturn(0);
 }
 
+void normalizeShape(std::vector<double> &shape)
+{
+  double big = 0;
+  for (double s : shape)
+    if (std::abs(s) > std::abs(big)) big = s;
+  if (big != 0)
+    for (double &s : shape) s /= big;
+}
+
 PetscErrorCode gatherShape(Assembler &assembler, Vec v, std::vector<double> *shape)
 {
   PetscHandle<VecScatter> toZero;
@@ -147,11 +156,7 @@ PetscErrorCode gatherShape(Assembler &assembler, Vec v, std::vector<double> *sha
   PetscCall(scatterValues(toZero, v, gathered, *shape));
   if (rank == 0) {
     shape->resize(assembler.model().numCoordinates());
-    double big = 0;
-    for (double s : *shape)
-      if (std::abs(s) > std::abs(big)) big = s;
-    if (big != 0)
-      for (double &s : *shape) s /= big;
+    normalizeShape(*shape);
   } else {
     shape->clear();
   }
@@ -296,12 +301,7 @@ PetscErrorCode solveModes(Assembler &assembler, double t, Vec q, Vec lambda, int
     PetscCall(scatterValues(toZero, xr, gathered, shape));
     if (rank == 0) {
       shape.resize(nq); // coordinates only
-      // Sign and scale fixed so that runs on any rank count compare directly.
-      double big = 0;
-      for (double s : shape)
-        if (std::abs(s) > std::abs(big)) big = s;
-      if (big != 0)
-        for (double &s : shape) s /= big;
+      normalizeShape(shape);
       result->shapes.push_back(std::move(shape));
     }
   }
