@@ -3,6 +3,7 @@
 // against central differences at random deformed states and velocities,
 // the dissipated power, and zero force for rigid motions (objectivity).
 #include "boomdyn/ancf_element.hpp"
+#include "ancf_random_states.hpp"
 
 #include <gtest/gtest.h>
 
@@ -10,32 +11,13 @@
 #include <random>
 
 using namespace boomdyn::ancf;
+using namespace boomdyn::ancf::element_states;
 
 namespace {
 
 // Steel box section with retardation times giving ~1-5 % damping in the low modes.
 const Section kDamped{2.1e11 * 4.0e-3, 2.1e11 * 2.5e-5, 7850 * 4.0e-3, 2.0e-4, 3.0e-3};
 
-double coordinateScale(int k, double l) { return (k % 4) < 2 ? l : 1.0; }
-
-Vec8 deformedState(std::mt19937 &rng, double l, double amp)
-{
-  std::uniform_real_distribution<double> u(-1.0, 1.0);
-  const double angle = 3.0 * u(rng);
-  Vec8 e = straightElement(Vec2(u(rng), u(rng)), Vec2(std::cos(angle), std::sin(angle)), l);
-  for (int k = 0; k < 8; ++k) e[k] += amp * u(rng) * coordinateScale(k, l);
-  return e;
-}
-
-Vec8 randomVelocity(std::mt19937 &rng, double l)
-{
-  std::uniform_real_distribution<double> u(-1.0, 1.0);
-  Vec8 v;
-  for (int k = 0; k < 8; ++k) v[k] = 2.0 * u(rng) * coordinateScale(k, l) / l; // up to ~2 m/s, 2 rad/s
-  return v;
-}
-
-double relErr(const Eigen::MatrixXd &a, const Eigen::MatrixXd &b) { return (a - b).norm() / b.norm(); }
 
 Vec8 force(const Vec8 &e, const Vec8 &v, double l)
 {
@@ -51,7 +33,7 @@ TEST(AncfDamping, JacobiansMatchCentralDifferences)
   std::mt19937 rng(7);
   const double l = 0.25;
   for (int trial = 0; trial < 8; ++trial) {
-    const Vec8 e = deformedState(rng, l, trial < 4 ? 0.02 : 0.2), v = randomVelocity(rng, l);
+    const Vec8 e = deformedState(rng, l, trial < 4 ? 0.02 : 0.2), v = randomVelocity(rng, l, 2.0 / l); // up to ~2 m/s, 2 rad/s
     Vec8 f;
     Mat8 Kq, Dv;
     dampingForce(kDamped, l, e, v, f, &Kq, &Dv);
@@ -76,7 +58,7 @@ TEST(AncfDamping, DissipatedPowerIsRateTimesForceAndPositive)
   std::mt19937 rng(8);
   const double l = 0.4;
   for (int trial = 0; trial < 6; ++trial) {
-    const Vec8 e = deformedState(rng, l, 0.1), v = randomVelocity(rng, l);
+    const Vec8 e = deformedState(rng, l, 0.1), v = randomVelocity(rng, l, 2.0 / l); // up to ~2 m/s, 2 rad/s
     Vec8 f;
     const double power = dampingForce(kDamped, l, e, v, f, nullptr, nullptr);
     EXPECT_GT(power, 0.0);
@@ -102,7 +84,7 @@ TEST(AncfDamping, RigidMotionsGiveNoDampingForce)
       rotation.segment<2>(2 * k) = omega * Vec2(-arm.y(), arm.x());
     }
     // Reference: the force of a pure deformation rate of unit size.
-    const Vec8 unit = randomVelocity(rng, l);
+    const Vec8 unit = randomVelocity(rng, l, 2.0 / l); // up to ~2 m/s, 2 rad/s
     const double scale = force(e, unit, l).norm() * (omega * (1.0 + centre.norm()));
     EXPECT_LT(force(e, translation, l).norm(), 1e-12 * scale) << "trial " << trial;
     EXPECT_LT(force(e, rotation, l).norm(), 1e-12 * scale) << "trial " << trial;

@@ -3,6 +3,7 @@
 // differences, damping consistent with the reduced axial strain, and no
 // spurious zero-energy modes (a free element has exactly 3 rigid-body zeros).
 #include "boomdyn/ancf_element.hpp"
+#include "ancf_random_states.hpp"
 
 #include <gtest/gtest.h>
 
@@ -13,6 +14,7 @@
 #include <random>
 
 using namespace boomdyn::ancf;
+using namespace boomdyn::ancf::element_states;
 
 namespace {
 
@@ -23,26 +25,6 @@ Section reducedSection(double etaA = 0, double etaB = 0)
   return s;
 }
 
-double coordinateScale(int k, double l) { return (k % 4) < 2 ? l : 1.0; }
-
-Vec8 deformedState(std::mt19937 &rng, double l, double amp)
-{
-  std::uniform_real_distribution<double> u(-1.0, 1.0);
-  const double angle = 3.0 * u(rng);
-  Vec8 e = straightElement(Vec2(u(rng), u(rng)), Vec2(std::cos(angle), std::sin(angle)), l);
-  for (int k = 0; k < 8; ++k) e[k] += amp * u(rng) * coordinateScale(k, l);
-  return e;
-}
-
-Vec8 randomVelocity(std::mt19937 &rng, double l)
-{
-  std::uniform_real_distribution<double> u(-1.0, 1.0);
-  Vec8 v;
-  for (int k = 0; k < 8; ++k) v[k] = u(rng) * coordinateScale(k, l);
-  return v;
-}
-
-double relErr(const Eigen::MatrixXd &a, const Eigen::MatrixXd &b) { return (a - b).norm() / b.norm(); }
 
 } // namespace
 
@@ -117,7 +99,7 @@ TEST(AncfReducedAxial, DampingJacobiansMatchCentralDifferences)
   std::mt19937 rng(14);
   const double l = 0.25;
   for (int trial = 0; trial < 6; ++trial) {
-    const Vec8 e = deformedState(rng, l, trial < 3 ? 0.02 : 0.2), v = randomVelocity(rng, l);
+    const Vec8 e = deformedState(rng, l, trial < 3 ? 0.02 : 0.2), v = randomVelocity(rng, l, 1.0);
     Vec8 f;
     Mat8 Kq, Dv, fdQ, fdV;
     dampingForce(sec, l, e, v, f, &Kq, &Dv);
@@ -143,7 +125,7 @@ TEST(AncfReducedAxial, AxialDampingUsesTheReducedStrainRate)
   const double x3[3] = {0.5 - 0.5 * std::sqrt(0.6), 0.5, 0.5 + 0.5 * std::sqrt(0.6)};
   const double w3[3] = {5.0 / 18.0, 8.0 / 18.0, 5.0 / 18.0};
   for (int trial = 0; trial < 4; ++trial) {
-    const Vec8 e = deformedState(rng, l, 0.1), v = randomVelocity(rng, l);
+    const Vec8 e = deformedState(rng, l, 0.1), v = randomVelocity(rng, l, 1.0);
     Vec8 f;
     const double power = dampingForce(sec, l, e, v, f, nullptr, nullptr);
     double expected = 0;
