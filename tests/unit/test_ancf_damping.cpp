@@ -33,7 +33,8 @@ TEST(AncfDamping, JacobiansMatchCentralDifferences)
   std::mt19937 rng(7);
   const double l = 0.25;
   for (int trial = 0; trial < 8; ++trial) {
-    const Vec8 e = deformedState(rng, l, trial < 4 ? 0.02 : 0.2), v = randomVelocity(rng, l, 2.0 / l); // up to ~2 m/s, 2 rad/s
+    // Velocities up to ~2 m/s and 2 rad/s.
+    const Vec8 e = deformedState(rng, l, trial < 4 ? 0.02 : 0.2), v = randomVelocity(rng, l, 2.0 / l);
     Vec8 f;
     Mat8 Kq, Dv;
     dampingForce(kDamped, l, e, v, f, &Kq, &Dv);
@@ -58,7 +59,7 @@ TEST(AncfDamping, DissipatedPowerIsRateTimesForceAndPositive)
   std::mt19937 rng(8);
   const double l = 0.4;
   for (int trial = 0; trial < 6; ++trial) {
-    const Vec8 e = deformedState(rng, l, 0.1), v = randomVelocity(rng, l, 2.0 / l); // up to ~2 m/s, 2 rad/s
+    const Vec8 e = deformedState(rng, l, 0.1), v = randomVelocity(rng, l, 2.0 / l);
     Vec8 f;
     const double power = dampingForce(kDamped, l, e, v, f, nullptr, nullptr);
     EXPECT_GT(power, 0.0);
@@ -84,7 +85,7 @@ TEST(AncfDamping, RigidMotionsGiveNoDampingForce)
       rotation.segment<2>(2 * k) = omega * Vec2(-arm.y(), arm.x());
     }
     // Reference: the force of a pure deformation rate of unit size.
-    const Vec8 unit = randomVelocity(rng, l, 2.0 / l); // up to ~2 m/s, 2 rad/s
+    const Vec8 unit = randomVelocity(rng, l, 2.0 / l);
     const double scale = force(e, unit, l).norm() * (omega * (1.0 + centre.norm()));
     EXPECT_LT(force(e, translation, l).norm(), 1e-12 * scale) << "trial " << trial;
     EXPECT_LT(force(e, rotation, l).norm(), 1e-12 * scale) << "trial " << trial;
