@@ -2,21 +2,21 @@
 // body 2) and R (body 3) with a rope of constant length L:
 //     C = L - |r_P - r_Q| - |r_Q - r_R| = 0
 // It makes the third body extend relative to the second as fast as the second
-// relative to the first. The multiplier is the rope tension in N: a negative
-// value means the rope would have to push (slack rope) and is flagged.
+// relative to the first. The rope's force is T = -lambda (N); an inextensible
+// rope stands for an extension/retraction rope pair (rope_type.cpp): T > 0
+// is the net pull of the extension rope, T < 0 that of the retraction rope.
+// The geometry (l, l_q, l_qq) is RopePath's, shared with the elastic rope.
 #pragma once
 
 #include "boomdyn/body.hpp"
 #include "boomdyn/constraint.hpp"
+#include "boomdyn/rope_path.hpp"
 
 namespace boomdyn {
 
 class Rope : public Constraint {
 public:
-  struct Point {
-    const Body *body;
-    double s;
-  };
+  using Point = RopePath::Point;
   Rope(std::string name, Point p, Point q, Point r, double length);
   std::string name() const override { return name_; }
   int numRows() const override { return 1; }
@@ -28,8 +28,7 @@ public:
 
 private:
   std::string name_;
-  Point pts_[3];
-  CenterlineLocation loc_[3];
+  RopePath path_;
   double length_;
 };
 

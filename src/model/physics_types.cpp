@@ -16,6 +16,7 @@
   X(slidingJointType) \
   X(extractionDriveType) \
   X(ropeType) \
+  X(elasticRopeType) \
   X(distanceType) \
   X(pointForceType) \
   X(pointMassType) \

@@ -79,6 +79,38 @@ TEST(RankIndependence, DynamicRunMatchesSingleRank)
   EXPECT_EQ(distributed.summary.steps, alone.summary.steps);
 }
 
+// An elastic rope (state output channels, an event source, a force element
+// whose coordinates lie on both ranks) gives the same run on 2 ranks as on one.
+TEST(RankIndependence, ElasticRopeRunMatchesSingleRank)
+{
+  PetscMPIInt size, rank;
+  MPI_Comm_size(PETSC_COMM_WORLD, &size);
+  MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
+  if (size == 1) GTEST_SKIP() << "run under mpiexec -n 2 (CTest: mpi2.regression)";
+  std::string text = kScene;
+  text.insert(text.find("loads:"), "  - {type: elastic_rope, name: stay, from: lower, from_at: 0.5, pulley: lower, "
+                                   "pulley_at: end, to: upper, to_at: end, EA: 1.0e7, pretension: 2000, damping: 50}\n");
+  const Scene scene = parseScene(text, "rank-independence-rope.yaml");
+  const DynamicHistory distributed = runDynamic(scene, PETSC_COMM_WORLD);
+  const DynamicHistory alone = runDynamic(scene, PETSC_COMM_SELF);
+  ASSERT_TRUE(distributed.summary.completed);
+  ASSERT_TRUE(alone.summary.completed);
+  const double relative = finalStateDifference(distributed, alone);
+  PetscPrintf(PETSC_COMM_WORLD, "  elastic rope, %d ranks vs 1: max relative difference of final q, v = %.3e\n", size,
+              relative);
+  EXPECT_LT(relative, 1e-10);
+  EXPECT_EQ(distributed.summary.steps, alone.summary.steps);
+  if (rank == 0) { // outputs and events live on rank 0
+    ASSERT_EQ(distributed.outputs.size(), alone.outputs.size());
+    double tension = 0, scale = 0;
+    for (std::size_t s = 0; s < alone.outputs.size(); ++s)
+      tension = std::max(tension, std::abs(distributed.outputs[s][0] - alone.outputs[s][0])),
+      scale = std::max(scale, std::abs(alone.outputs[s][0]));
+    EXPECT_LT(tension, 1e-10 * scale);
+    EXPECT_EQ(distributed.events.size(), alone.events.size());
+  }
+}
+
 TEST(RankIndependence, DampedDynamicRunMatchesSingleRank)
 {
   PetscMPIInt size;

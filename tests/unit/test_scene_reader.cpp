@@ -346,7 +346,7 @@ constraints:
   expectRejected(bodies + "  - {type: distance, body: boom, at: 1, point: [0, 0], track: jib}\n", 14,
                  "constraints[0].track", "only allowed for a sliding_joint");
   expectRejected(bodies + "  - {type: pin, body: boom, at: 1, length: 2}\n", 14, "constraints[0].length",
-                 "only allowed for a rope or a distance");
+                 "only allowed for a rope or an elastic_rope or a distance");
 }
 
 TEST(SceneReader, DynamicDefaultsAndDtMinFollowsSmallDt)

@@ -1,0 +1,129 @@
+// Type `elastic_rope` (section constraints, beside the inextensible `rope`
+// it replaces in a scene): an elastic tension-only rope from a point over
+// zero, one or two point pulleys to a far point (elastic_rope.hpp). It is a
+// force element, not a constraint (no multiplier), but it joins bodies as
+// the rope and distance constraints do, so it is listed with them.
+// Outputs per rope and step: tension, length, stretch (state channels);
+// events: taut / slack (direction +1 / -1) at the interpolated crossing.
+#include "boomdyn/elastic_rope.hpp"
+#include "boomdyn/model_builder.hpp"
+#include "boomdyn/physics_type.hpp"
+
+#include <cmath>
+#include <memory>
+
+namespace boomdyn {
+
+namespace {
+
+// The time inside the step [t - h, t] at which the stretch crossed zero: the
+// cubic Hermite interpolant of the stretch from its values and rates at the
+// two ends (exact for a free fall, whose stretch is a parabola), by bisection.
+double stretchCrossing(double t, double h, double d0, double r0, double d1, double r1)
+{
+  auto at = [&](double x) {
+    const double x2 = x * x, x3 = x2 * x;
+    return (2 * x3 - 3 * x2 + 1) * d0 + (x3 - 2 * x2 + x) * h * r0 + (-2 * x3 + 3 * x2) * d1 + (x3 - x2) * h * r1;
+  };
+  double a = 0, b = 1;
+  if ((at(a) > 0) == (at(b) > 0)) return t; // no sign change of the interpolant: at the step's end
+  for (int it = 0; it < 60; ++it) {
+    const double m = 0.5 * (a + b);
+    ((at(m) > 0) == (at(a) > 0) ? a : b) = m;
+  }
+  return t - h + 0.5 * (a + b) * h;
+}
+
+void buildElasticRope(const ComponentSpec &spec, ModelBuilder &b)
+{
+  std::vector<RopePath::Point> points{{&b.body(spec.text("from")), spec.number("from_at")}};
+  for (const char *pulley : {"pulley", "pulley2"})
+    if (spec.has(pulley)) points.push_back({&b.body(spec.text(pulley)), spec.number(std::string(pulley) + "_at")});
+  points.push_back({&b.body(spec.text("to")), spec.number("to_at")});
+  RopePath path(points);
+  std::vector<PetscInt> dofs;
+  path.coordinates(dofs);
+  std::vector<double> q0;
+  for (PetscInt d : dofs) q0.push_back(b.bodyCoordinates()[d]);
+  const double spanned = path.length(q0.data()), EA = spec.number("EA");
+  // Pretension T0 at the initial configuration: (EA/L0)(l0 - L0) = T0.
+  const double L0 = spec.has("length") ? spec.number("length") : spanned / (1 + spec.numberOr("pretension", 0.0) / EA);
+  if (!(spanned > 0))
+    throw ModelError(ModelBuilder::where(spec.mark) + "elastic_rope '" + spec.name +
+                     "': its points coincide at t = 0 (spanned length 0)");
+  auto rope = std::make_unique<ElasticRope>(spec.name, std::move(path), EA, L0, spec.number("damping"));
+  const ElasticRope *r = rope.get(); // owned by the Model, which also holds the channels and the source
+  b.addItem(std::move(rope));
+  auto channel = [&](const char *quantity, const char *unit, double (*pick)(const ElasticRope::State &)) {
+    b.addOutputChannel(OutputChannel::ofState("elastic_rope", spec.name, quantity, unit, dofs,
+                                              [r, pick](const double *q, const double *v) { return pick(r->state(q, v)); }));
+  };
+  channel("tension", "N", [](const ElasticRope::State &s) { return s.tension; });
+  channel("length", "m", [](const ElasticRope::State &s) { return s.length; });
+  channel("stretch", "m", [](const ElasticRope::State &s) { return s.stretch; });
+  // Slack/taut events: +1 taut, -1 slack.
+  struct Last {
+    double t = 0;
+    ElasticRope::State state;
+  };
+  auto last = std::make_shared<Last>();
+  EventSource source{spec.name, {"taut", "slack"}, dofs, nullptr};
+  source.detect = [r, last, name = spec.name](double t, double h, const double *q, const double *v, bool first,
+                                             std::vector<TypeEvent> &events) {
+    const ElasticRope::State now = r->state(q, v), &before = last->state;
+    if (!first && now.taut != before.taut) {
+      double when = t;
+      if ((before.stretch > 0) != (now.stretch > 0)) // by length: the stretch crossed zero
+        when = stretchCrossing(t, h, before.stretch, before.rate, now.stretch, now.rate);
+      else if (before.force != now.force) // by damping: f crossed zero (linear in the step)
+        when = t - h * now.force / (now.force - before.force);
+      events.push_back({when, name, now.taut ? "taut" : "slack", now.taut ? 1 : -1});
+    }
+    last->t = t, last->state = now;
+  };
+  b.addEventSource(std::move(source));
+}
+
+} // namespace
+
+PhysicsType elasticRopeType()
+{
+  PhysicsType t;
+  t.schema.section = "constraints";
+  t.schema.type = t.schema.defaultName = "elastic_rope";
+  t.schema.summary = "An elastic tension-only wire rope from a point over zero, one or two point pulleys to a far "
+                     "point: tension (EA/L0)(l - L0) + c dl/dt while taut, none while slack; slack/taut events.";
+  t.schema.keys = {
+      bodyKey("from", "body of the rope's first end"),
+      atKey("from_at", "from", "material point of the first end"),
+      key("pulley", ValueKind::Body, "", Need::Optional, "body that carries the first pulley (a point, no radius)"),
+      atKey("pulley_at", "pulley", "material point of the first pulley").requiredWith("pulley"),
+      key("pulley2", ValueKind::Body, "", Need::Optional, "body that carries a second pulley, after the first"),
+      atKey("pulley2_at", "pulley2", "material point of the second pulley").requiredWith("pulley2"),
+      bodyKey("to", "body of the rope's far end"),
+      atKey("to_at", "to", "material point of the far end"),
+      key("EA", ValueKind::Number, "N", Need::Required, "axial stiffness of the rope (metallic area times the rope's "
+                                                       "modulus)").positive(),
+      key("length", ValueKind::Number, "m", Need::Optional, "unstretched length L0").positive().derived(
+          "from the pretension and the initial spanned length l0: L0 = l0 / (1 + pretension/EA)"),
+      key("pretension", ValueKind::Number, "N", Need::Optional, "tension in the initial configuration")
+          .nonNegative()
+          .byDefault(0.0),
+      key("damping", ValueKind::Number, "N s/m", Need::Optional, "damping c of the tension c dl/dt")
+          .nonNegative()
+          .byDefault(0.0),
+  };
+  t.schema.rules = {
+      forbidIfPresent("length", "pretension", "not allowed together with 'length' (the pretension sets the length)"),
+      forbidIfAbsent("pulley", "pulley2", "only allowed together with 'pulley' (the second pulley follows the first)"),
+      forbidIfAbsent("pulley", "pulley_at", "only allowed together with 'pulley'"),
+      forbidIfAbsent("pulley2", "pulley2_at", "only allowed together with 'pulley2'"),
+  };
+  const std::string reason = "not allowed for an elastic_rope (it names its points with from/from_at, "
+                             "pulley/pulley_at, pulley2/pulley2_at, to/to_at)";
+  for (const char *k : {"body", "at", "point", "angle", "other", "other_at"}) t.schema.rules.push_back(forbid(k, reason));
+  t.build = buildElasticRope;
+  return t;
+}
+
+} // namespace boomdyn
