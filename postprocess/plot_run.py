@@ -199,7 +199,7 @@ def joint_plots(plotter, f):
         ("slack_coordinates", "/steps/slack", "/layout/sliding_joint_names", "arc-length coordinate s [m]",
          "slack coordinates of the sliding joints"),
         ("rope_tension", "/steps/rope_tension", "/layout/rope_names", "tension [N]",
-         "rope tension (negative: the rope would have to push)"),
+         "rope force (positive: extension rope pulls; negative: retraction rope pulls)"),
     ]
     for name, path, names_path, ylabel, title in series:
         if path not in f:

@@ -1,8 +1,10 @@
 // Rope tensions of a step, for /joints/rope_tension: the output channels of
 // group "rope" (minus the multipliers of the rope rows, since the rope's
-// constraint is C = L - l1 - l2; rope_type.cpp). A negative
-// tension means the rope would have to push: it is slack there; such steps
-// are counted for /summary/slack_rope_steps and the first one is reported.
+// constraint is C = L - l1 - l2; rope_type.cpp). The inextensible rope
+// stands for an extension/retraction rope pair (docs/model.md §2.2): a
+// positive value is the net pull of the extension rope, a negative one that
+// of the retraction rope (the extension rope is slack then); such steps are
+// counted for /summary/slack_rope_steps and the first one is reported.
 #pragma once
 
 #include "boomdyn/model.hpp"

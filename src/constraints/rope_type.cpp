@@ -23,7 +23,8 @@ void buildRope(const ComponentSpec &spec, ModelBuilder &b)
     length = probe.spannedLength(vals.data());
   }
   const ConstraintItem &item = b.addConstraint(std::make_shared<Rope>(spec.name, P, Q, R, length), spec.mark);
-  // C = L - l1 - l2: a pulling rope has a negative multiplier.
+  // C = L - l1 - l2: a pulling extension rope has a negative multiplier; a
+  // positive one is the retraction rope's pull (rope_tensions.hpp).
   b.addOutputChannel(
       OutputChannel::ofMultiplier("rope", spec.name, "tension", "N", item.firstRow() - b.numCoordinates(), -1.0));
 }
@@ -35,8 +36,9 @@ PhysicsType ropeType()
   PhysicsType t;
   t.schema.section = "constraints";
   t.schema.type = t.schema.defaultName = "rope";
-  t.schema.summary = "An inextensible rope from a point over a pulley point to a third point (it may push: the "
-                     "output counts steps with negative tension).";
+  t.schema.summary = "An inextensible rope from a point over a pulley point to a third point: an extension/retraction "
+                     "rope pair idealized as one bilateral constraint (force > 0: the extension rope pulls; < 0: the "
+                     "retraction rope pulls).";
   t.schema.keys = {
       bodyKey("from", "body of the rope's first end"),
       atKey("from_at", "from", "material point of the first end"),

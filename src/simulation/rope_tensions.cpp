@@ -27,9 +27,10 @@ PetscErrorCode RopeTensions::update(MPI_Comm comm, double t, const std::vector<d
   int flag = slack;
   PetscCallMPI(MPI_Bcast(&flag, 1, MPI_INT, 0, comm));
   if (flag && slackSteps_++ == 0)
-    PetscCall(PetscPrintf(comm, "warning: rope '%s' would have to push at t = %g s (tension %g N): the rope "
-                          "is slack there; counted in /summary/slack_rope_steps\n", which.c_str(), t,
-                          tensions.empty() ? 0.0 : *std::min_element(tensions.begin(), tensions.end())));
+    PetscCall(PetscPrintf(comm, "note: rope '%s' carries %g N < 0 at t = %g s: the inextensible rope stands for an "
+                          "extension/retraction rope pair, and here the retraction rope pulls (the extension rope is "
+                          "slack); such steps are counted in /summary/slack_rope_steps\n", which.c_str(),
+                          tensions.empty() ? 0.0 : *std::min_element(tensions.begin(), tensions.end()), t));
   PetscFunctionReturn(0);
 }
 
