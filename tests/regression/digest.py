@@ -27,6 +27,10 @@ say what a run computed (docs/verification.md, "Regression digests"):
   tracking.*   the tracked frequency: rows, first, last, min, max
   events.*     the stick/slip events: count, and time, joint and kind of the
                first 20 and the last
+  elastic_rope.*  (scenes with elastic ropes) tension, length and stretch of
+               each at the sample steps (/steps/outputs)
+  type_events.*   (scenes whose types report events) count, and time,
+               component and kind of the first 20 and the last
 
 Comparison. Integers (written without a decimal point) must be equal, except
 the total of Newton iterations (INT_TOLERANCES below: within 5e-3). A real
@@ -208,6 +212,13 @@ def extract(path):
                 data = data.reshape(len(data), -1)
                 for j, name in enumerate(_names(f, names_ds, data.shape[1], "column")):
                     series.append((f"{group}.{name}.{q}", data[:, j:j + 1], None))
+        # State output channels of elastic ropes (the multiplier channels
+        # repeat /steps/rope_tension and stay out of the digests).
+        if "outputs" in steps and "/layout/output_names" in f:
+            data = steps["outputs"][()]
+            for j, name in enumerate(_names(f, "/layout/output_names", data.shape[1], "column")):
+                if name.startswith("elastic_rope/"):
+                    series.append((name.replace("/", "."), data[:, j:j + 1], None))
         if "lambda" in steps:
             data = steps["lambda"][()]
             series.append(("steps.lambda.norm", np.linalg.norm(data.reshape(len(data), -1), axis=1)[:, None], None))
@@ -242,6 +253,18 @@ def extract(path):
                 put(f"events.time.t@{i + 1}", t[i])
                 put(f"events.joint.index@{i + 1}", joint[i])
                 put(f"events.to_slip.flag@{i + 1}", to_slip[i])
+        if "type_events" in summary:
+            put("type_events.all.count", summary["type_events"])
+        if "type_events" in f:
+            ev = f["type_events"]
+            t, comp, kind = ev["time"][()], ev["component"][()], ev["kind"][()]
+            listed = list(range(min(EVENTS_LISTED, len(t))))
+            if len(t) > EVENTS_LISTED:
+                listed.append(len(t) - 1)
+            for i in listed:
+                put(f"type_events.time.t@{i + 1}", t[i])
+                put(f"type_events.component.index@{i + 1}", comp[i])
+                put(f"type_events.kind.index@{i + 1}", kind[i])
     return out
 
 
