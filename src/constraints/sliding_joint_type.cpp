@@ -2,9 +2,12 @@
 // slider body moves along the centerline of the track body. Adds the slack
 // (contact) coordinate s, optionally LuGre friction with its bristle state
 // z, and a post-step hook that moves the contact point to the track element
-// that holds s (or stops the run when the slider leaves its track).
+// that holds s (or stops the run when the slider leaves its track). With a
+// `pad` map the normal row gives way to a compliant pad with clearance
+// (PadContact): only the tangential row stays a constraint.
 #include "boomdyn/lugre_friction.hpp"
 #include "boomdyn/model_builder.hpp"
+#include "boomdyn/pad_contact.hpp"
 #include "boomdyn/physics_type.hpp"
 #include "boomdyn/sliding_joint.hpp"
 
@@ -40,6 +43,30 @@ const TypeSchema &frictionSchema()
             "relative speed below which the output counts the joint as sticking")
             .positive()
             .derived("v_s / 10"),
+    };
+    return s;
+  }();
+  return schema;
+}
+
+// Compliant pad with clearance (docs/model.md §2.1, pad variant).
+const TypeSchema &padSchema()
+{
+  static const TypeSchema schema = [] {
+    TypeSchema s;
+    s.section = "constraints";
+    s.type = "pad";
+    s.summary = "Compliant slide pad with clearance at a sliding joint (the map under a sliding_joint's `pad` key): "
+                "the slider point moves freely across the track within +-clearance and meets an elastic pad on "
+                "either side.";
+    s.keys = {
+        key("stiffness", ValueKind::Number, "N/m", Need::Required, "pad stiffness k_pad").positive(),
+        key("clearance", ValueKind::Number, "m", Need::Optional, "free play g on either side of the track")
+            .nonNegative()
+            .byDefault(0.0),
+        key("damping", ValueKind::Number, "N s/m", Need::Optional, "pad damping c_pad while in contact")
+            .nonNegative()
+            .byDefault(0.0),
     };
     return s;
   }();
@@ -129,13 +156,24 @@ PostStepHook followTrack(std::shared_ptr<SlidingJoint> joint)
 void buildSlidingJoint(const ComponentSpec &spec, ModelBuilder &b)
 {
   const auto &mine = b.scratch(spec.type, spec.name);
+  const bool padded = spec.has("pad");
   auto joint = std::make_shared<SlidingJoint>(spec.name, b.body(spec.text("track")), b.body(spec.text("body")),
-                                              spec.number("at"), static_cast<PetscInt>(mine.at("slack")), mine.at("s0"));
+                                              spec.number("at"), static_cast<PetscInt>(mine.at("slack")), mine.at("s0"),
+                                              !padded);
   b.addSlidingJoint(joint);
   const ConstraintItem &item = b.addConstraint(joint, spec.mark);
-  if (spec.has("friction")) // lambda_n is the joint's second row
-    b.addFriction(std::make_unique<LuGreFriction>(joint, static_cast<PetscInt>(mine.at("z")), item.firstRow() + 1,
-                                                  frictionOf(spec.map("friction"))));
+  const PadContact *pad = nullptr;
+  if (padded) {
+    const ComponentSpec &p = spec.map("pad");
+    pad = b.addPad(std::make_unique<PadContact>(
+        joint, PadSpec{p.number("stiffness"), p.number("clearance"), p.number("damping")}));
+  }
+  if (spec.has("friction")) { // the normal force: lambda_n (the joint's second row) or the pad's force
+    const auto z = static_cast<PetscInt>(mine.at("z"));
+    const FrictionSpec fr = frictionOf(spec.map("friction"));
+    if (pad) b.addFriction(std::make_unique<LuGreFriction>(joint, z, pad, fr));
+    else b.addFriction(std::make_unique<LuGreFriction>(joint, z, item.firstRow() + 1, fr));
+  }
   b.addPostStepHook(followTrack(joint));
 }
 
@@ -155,6 +193,10 @@ PhysicsType slidingJointType()
       key("friction", ValueKind::Map, "", Need::Optional, "LuGre friction parameters (table below)")
           .holding(frictionSchema())
           .derived("frictionless"),
+      key("pad", ValueKind::Map, "", Need::Optional,
+          "compliant pad with clearance in place of the rigid normal condition (table below)")
+          .holding(padSchema())
+          .derived("rigid (bilateral, no clearance)"),
   };
   const std::string reason =
       "not allowed for a sliding_joint (it names the slider point with body/at and the track with 'track')";
