@@ -57,7 +57,7 @@ public:
     return d > clearance ? 1 : (d < -clearance ? -1 : 0);
   }
   // Static tangent only, in the clearance: stiffness gapStiffness * k_pad (evaluate()).
-  static constexpr double gapStiffness = 1e-3;
+  static constexpr double gapStiffness = 1e-4;
 
 private:
   std::shared_ptr<const SlidingJoint> joint_;

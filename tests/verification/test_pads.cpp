@@ -106,3 +106,111 @@ TEST(Pads, StiffPadsWithoutClearanceReproduceTheBilateralJoint)
   EXPECT_LT(tipSoft, tipRigid);
   EXPECT_LT(hzSoft.at(0), hzRigid[0]);
 }
+
+namespace {
+
+// A stiff beam (the slider, 1 m, 50 kg) resting on two pads with clearance
+// at its ends on a clamped rigid rail, held axially by a drive on its slack
+// coordinate, under gravity W and an upward force P at x = a from its start.
+// Statics: R_A = W/2 - P (1 - a/L), R_B = W/2 - P a/L (forces of the pads on
+// the slider, +y): pad B changes sides at P = W L / (2a), pad A at
+// P = W L / (2 (L - a)).
+constexpr double kL = 1.0, kA = 0.75, kMass = 50.0, kW = kMass * 9.81, kGap = 1e-3, kPadK = 1e8;
+
+Scene padBeam(double P)
+{
+  char force[64];
+  std::snprintf(force, sizeof force, "%.17g", P);
+  std::string s = R"(name: pads-clearance
+analysis: static
+gravity: [0, -9.81]
+bodies:
+  - {name: rail, type: rigid, length: 2.0, origin: [0, 0], section: {rhoA: 10}}
+  - {name: slider, length: 1.0, elements: 4, origin: [0.5, 0], section: {EA: 1.0e10, EI: 1.0e8, rhoA: 50}}
+constraints:
+  - {type: clamp, body: rail, at: start}
+  - {type: sliding_joint, name: A, body: slider, at: start, track: rail, pad: {stiffness: 1.0e8, clearance: 1.0e-3}}
+  - {type: sliding_joint, name: B, body: slider, at: end, track: rail, pad: {stiffness: 1.0e8, clearance: 1.0e-3}}
+  - {type: extraction_drive, name: hold, joint: A, displacement: 0}
+loads:
+  - {type: point_force, name: lift, body: slider, at: 0.75, force: [0, )";
+  s += force;
+  s += "]}\nstatic: {load_steps: 1}\n";
+  return parseScene(s, "pads-clearance.yaml");
+}
+
+struct PadOutcome {
+  std::vector<PadState> pads;
+  int iterations = 0;
+  bool converged = false;
+};
+
+// The pads' states at the end of a static run, from the gathered state.
+class PadRecorder : public Monitor {
+public:
+  PadRecorder(Simulation &sim, PadOutcome &out) : sim_(sim), out_(out) {}
+  PetscErrorCode afterStep(const RunState &s, std::string *) override
+  {
+    out_.iterations += s.iterations;
+    return 0;
+  }
+  PetscErrorCode finish(const RunState &s, const RunOutcome &outcome) override
+  {
+    out_.converged = outcome.completed();
+    const std::vector<double> q = gatherAll(s.q);
+    for (const PadContact *pad : sim_.model().pads()) {
+      std::vector<PetscInt> dofs;
+      pad->coordinates(dofs);
+      std::vector<double> qp;
+      for (PetscInt i : dofs) qp.push_back(q[i]);
+      out_.pads.push_back(pad->state(qp.data(), nullptr));
+    }
+    return 0;
+  }
+
+private:
+  Simulation &sim_;
+  PadOutcome &out_;
+};
+
+PadOutcome solvePadBeam(double P)
+{
+  PadOutcome out;
+  Simulation sim(padBeam(P), PETSC_COMM_WORLD, testOptions());
+  check(sim.setUp());
+  sim.addMonitor(std::make_unique<PadRecorder>(sim, out));
+  check(sim.run());
+  return out;
+}
+
+} // namespace
+
+TEST(Pads, BeamOnTwoPadsSwitchesSidesAtThePredictedLoadsAndMatchesStatics)
+{
+  const double switchB = kW * kL / (2 * kA), switchA = kW * kL / (2 * (kL - kA));
+  double worst = 0;
+  int maxIterations = 0;
+  // Just below and above each predicted switch (1 %): the side changes there.
+  for (double P : {-0.5 * kW, 0.0, 0.5 * kW, switchB * 0.99, switchB * 1.01, kW, switchA * 0.99, switchA * 1.01,
+                   3 * kW}) {
+    const PadOutcome out = solvePadBeam(P);
+    ASSERT_TRUE(out.converged) << "P = " << P;
+    ASSERT_EQ(out.pads.size(), 2u);
+    const double R[2] = {kW / 2 - P * (1 - kA / kL), kW / 2 - P * kA / kL};
+    for (int k = 0; k < 2; ++k) {
+      const PadState &st = out.pads[k];
+      // A pad pushing the slider up (R > 0) holds it from below: d < -g.
+      EXPECT_EQ(st.side, R[k] > 0 ? -1 : 1) << "pad " << "AB"[k] << " at P = " << P;
+      EXPECT_NEAR(st.penetration, std::abs(R[k]) / kPadK, 1e-8 * kW / kPadK);
+      worst = std::max(worst, std::abs(st.force - R[k]) / kW);
+    }
+    maxIterations = std::max(maxIterations, out.iterations);
+    PetscPrintf(PETSC_COMM_WORLD,
+                "  P/W = %8.5f: pad A side %+d force %12.6f N (statics %12.6f), pad B side %+d force %12.6f N "
+                "(statics %12.6f), %d Newton iterations\n",
+                P / kW, out.pads[0].side, out.pads[0].force, R[0], out.pads[1].side, out.pads[1].force, R[1],
+                out.iterations);
+  }
+  PetscPrintf(PETSC_COMM_WORLD, "  max |f - R| / W = %.2e, max Newton iterations %d\n", worst, maxIterations);
+  EXPECT_LT(worst, 1e-8);
+}
