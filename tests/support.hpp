@@ -6,6 +6,7 @@
 #pragma once
 
 #include "boomdyn/monitor.hpp"
+#include "boomdyn/monitors.hpp"
 #include "boomdyn/scene_reader.hpp"
 #include "boomdyn/simulation.hpp"
 
@@ -98,6 +99,8 @@ struct DynamicHistory {
   std::vector<double> finalState; // q and v of the last step, gathered on every rank
   NewtonStatistics newton;        // of the time steps' solver
   int patternVersion = 0;         // pattern rebuilds (sliding joints changing elements)
+  std::vector<std::vector<double>> outputs; // every output channel's value, per step (rank 0; empty elsewhere)
+  std::vector<TypeEvent> events;            // of the types' event sources (rank 0)
 };
 
 // All entries of a distributed vector on every rank.
@@ -144,6 +147,10 @@ private:
     std::vector<double> slack;
     for (const auto &j : model.slidingJoints()) slack.push_back(q[j->slackIndex()]);
     h_.slacks.push_back(slack);
+    std::vector<double> multipliers, slacks, outputs;
+    PetscCall(sim_.sensors().readJoints(s.q, s.lambda, slacks, multipliers));
+    PetscCall(sim_.sensors().readOutputs(s.q, s.v, multipliers, outputs));
+    h_.outputs.push_back(outputs);
     PetscFunctionReturn(0);
   }
 
@@ -157,7 +164,14 @@ inline DynamicHistory runDynamic(const Scene &scene, MPI_Comm comm = PETSC_COMM_
   Simulation sim(scene, comm, testOptions(errorTolerance));
   check(sim.setUp());
   sim.addMonitor(std::make_unique<HistoryRecorder>(sim, h));
+  const TypeEventsOutput *events = nullptr;
+  if (!sim.model().eventSources().empty()) {
+    auto monitor = std::make_unique<TypeEventsOutput>(sim, nullptr, true);
+    events = monitor.get();
+    sim.addMonitor(std::move(monitor));
+  }
   check(sim.run());
+  if (events) h.events = events->events();
   h.summary = sim.summary();
   // Final q and v on every rank, for comparisons across rank counts.
   GeneralizedAlpha &integrator = *sim.integrator();

@@ -10,6 +10,7 @@
 #include "boomdyn/post_step_hook.hpp"
 #include "boomdyn/scene.hpp"
 #include "boomdyn/sliding_joint.hpp"
+#include "boomdyn/type_event.hpp"
 #include "boomdyn/work_item.hpp"
 
 #include <memory>
@@ -65,6 +66,8 @@ public:
   const std::vector<OutputChannel> &outputChannels() const { return outputChannels_; }
   // Work after each converged step (sliding joints follow their tracks).
   const std::vector<PostStepHook> &postStepHooks() const { return postStepHooks_; }
+  // Per-type event sources (elastic ropes: slack/taut), in the order the types added them.
+  const std::vector<EventSource> &eventSources() const { return eventSources_; }
   // Sliding joints, mutable through a const Model: which track element holds
   // the contact point is topology state that follows the solution.
   const std::vector<std::shared_ptr<SlidingJoint>> &slidingJoints() const { return slidingJoints_; }
@@ -113,6 +116,7 @@ private:
   std::vector<FrameSensor> frameSensors_;
   std::vector<OutputChannel> outputChannels_;
   std::vector<PostStepHook> postStepHooks_;
+  std::vector<EventSource> eventSources_;
   std::vector<std::shared_ptr<SlidingJoint>> slidingJoints_;
   std::vector<std::pair<PetscInt, double>> slackInitial_; // (slack coordinate, initial s)
   std::vector<PetscInt> firstOrder_;

@@ -72,6 +72,7 @@ public:
   void addFrameSensor(FrameSensor frame) { model_.frameSensors_.push_back(std::move(frame)); }
   void addOutputChannel(OutputChannel channel) { model_.outputChannels_.push_back(std::move(channel)); }
   void addPostStepHook(PostStepHook hook) { model_.postStepHooks_.push_back(std::move(hook)); }
+  void addEventSource(EventSource source) { model_.eventSources_.push_back(std::move(source)); }
 
   // Numbers a type keeps between its stages, or hands to a later component
   // (an extraction drive reads its sliding joint's slack coordinate), keyed

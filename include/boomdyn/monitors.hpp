@@ -3,6 +3,7 @@
 //   EnergyCheck        energy balance of a dynamic run; fails a run that creates energy
 //   ResultsOutput      the results file: /steps (with sensors), /joints, /state, /modes, /summary
 //   FrictionOutput     stick/slip of frictional joints: /friction and /events
+//   TypeEventsOutput   events of the registered types (rope slack/taut): /type_events
 //   FrequencyTracking  modes along the trajectory: /tracking
 //   Checkpointer       checkpoints every interval of simulated time and on interruption
 //   ProgressLine       progress lines on the console
@@ -52,7 +53,6 @@ private:
   PetscErrorCode writeStepRow(const RunState &s);
   PetscErrorCode writeJoints(const RunState &s);
   PetscErrorCode writeOutputs(const RunState &s); // static runs: output channels only
-  void fillOutputs();
 
   Simulation &sim_;
   ResultsWriter writer_;
@@ -83,6 +83,30 @@ private:
   StickSlipMonitor stickSlip_;
   std::vector<double> values_;
   std::vector<FrictionReading> readings_;
+};
+
+// The registered types' event sources (Model::eventSources()): after every
+// converged dynamic step each source reports its changes; they go to
+// /type_events (when writer is not null), to the console (unless quiet) and
+// to events(). Sources take their state from the first state of a run (a
+// restarted run: the restored state), so nothing is checkpointed.
+class TypeEventsOutput : public Monitor {
+public:
+  TypeEventsOutput(Simulation &sim, ResultsWriter *writer, bool quiet) : sim_(sim), writer_(writer), quiet_(quiet) {}
+  PetscErrorCode start(const RunState &s, bool restarted) override;
+  PetscErrorCode afterStep(const RunState &s, std::string *failure) override;
+  PetscErrorCode finish(const RunState &s, const RunOutcome &outcome) override;
+  // Every event so far (rank 0).
+  const std::vector<TypeEvent> &events() const { return events_; }
+
+private:
+  PetscErrorCode detect(const RunState &s, bool first);
+
+  Simulation &sim_;
+  ResultsWriter *writer_;
+  bool quiet_;
+  std::vector<TypeEvent> events_;
+  std::vector<double> qs_, vs_;
 };
 
 class FrequencyTracking : public Monitor {

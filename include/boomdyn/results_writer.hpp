@@ -49,6 +49,8 @@ public:
   // Friction readings of one step, and stick/slip events as they happen.
   PetscErrorCode appendFriction(const std::vector<FrictionReading> &readings);
   PetscErrorCode appendEvents(const std::vector<StickSlipEvent> &events);
+  // Events of the registered types' event sources (/type_events, rank 0 data).
+  PetscErrorCode appendTypeEvents(const std::vector<TypeEvent> &events);
   // One row of frequency tracking; with the tracked shape when writeShape.
   PetscErrorCode appendTracking(const TrackedModes &modes, bool writeShape);
   PetscErrorCode finish(const std::string &status, PetscInt steps, PetscInt rejected, double wallTime,
@@ -85,7 +87,7 @@ private:
   bool hasEnergyBalance_ = false;
   std::vector<double> snapshotTimes_;
   std::size_t sampledPoints_ = 0, sampledSegments_ = 0;
-  long long eventCount_ = 0;
+  long long eventCount_ = 0, typeEventCount_ = 0;
   std::chrono::steady_clock::time_point lastFlush_ = std::chrono::steady_clock::now(), lastXdmf_ = lastFlush_;
 };
 

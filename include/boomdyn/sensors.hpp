@@ -30,12 +30,22 @@ public:
   PetscErrorCode readFriction(Vec q, Vec v, Vec lambda, std::vector<double> &values);
   // Moving-frame deflections of the scene's frame sensors (rank 0).
   PetscErrorCode readFrames(Vec q, std::vector<double> &deflections);
+  // Every output channel's value (Model::outputChannels(), in order) at this
+  // state (rank 0; empty elsewhere): multiplier channels from `multipliers`
+  // (all unscaled multipliers, as readJoints gives them), state channels
+  // from the values and velocities of their watched coordinates.
+  PetscErrorCode readOutputs(Vec q, Vec v, const std::vector<double> &multipliers, std::vector<double> &outputs);
+  // Values and velocities of the event sources' watched coordinates, one
+  // source after the other in Model::eventSources() order (rank 0).
+  PetscErrorCode readEventCoordinates(Vec q, Vec v, std::vector<double> &qs, std::vector<double> &vs);
 
 private:
   const Model &model_;
   std::vector<CenterlineLocation> locations_;
-  PetscHandle<VecScatter> scatter_, slackScatter_, lambdaScatter_, frameScatter_, frictionScatter_, normalScatter_;
-  PetscHandle<Vec> gathered_, slacks_, multipliers_, frameValues_, frictionValues_, normalValues_;
+  PetscHandle<VecScatter> scatter_, slackScatter_, lambdaScatter_, frameScatter_, frictionScatter_, normalScatter_,
+      channelScatter_, eventScatter_;
+  PetscHandle<Vec> gathered_, slacks_, multipliers_, frameValues_, frictionValues_, normalValues_, channelValues_,
+      eventValues_;
   struct Frame {
     const Body *body;
     double s;        // material point measured

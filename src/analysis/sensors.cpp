@@ -108,6 +108,42 @@ PetscErrorCode SensorProbe::setUp(Vec layout)
   }
   PetscCall(scatterToRankZero(layout, rank_, frictionIdx, frictionScatter_.address(), frictionValues_.address()));
   PetscCall(scatterToRankZero(layout, rank_, normalIdx, normalScatter_.address(), normalValues_.address()));
+  // State output channels and event sources: their watched coordinates, one after the other.
+  std::vector<PetscInt> channelIdx, eventIdx;
+  for (const OutputChannel &ch : model_.outputChannels())
+    if (ch.fromState()) channelIdx.insert(channelIdx.end(), ch.watched.begin(), ch.watched.end());
+  for (const EventSource &e : model_.eventSources()) eventIdx.insert(eventIdx.end(), e.watched.begin(), e.watched.end());
+  PetscCall(scatterToRankZero(layout, rank_, channelIdx, channelScatter_.address(), channelValues_.address()));
+  PetscCall(scatterToRankZero(layout, rank_, eventIdx, eventScatter_.address(), eventValues_.address()));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SensorProbe::readOutputs(Vec q, Vec v, const std::vector<double> &multipliers,
+                                        std::vector<double> &outputs)
+{
+  std::vector<double> qs, vs;
+  PetscFunctionBeginUser;
+  PetscCall(scatterValues(channelScatter_, q, channelValues_, qs));
+  PetscCall(scatterValues(channelScatter_, v, channelValues_, vs));
+  outputs.clear();
+  if (rank_ != 0) PetscFunctionReturn(0);
+  std::size_t offset = 0;
+  for (const OutputChannel &ch : model_.outputChannels()) {
+    if (!ch.fromState()) {
+      outputs.push_back(ch.factor * multipliers.at(static_cast<std::size_t>(ch.index)));
+      continue;
+    }
+    outputs.push_back(ch.value(qs.data() + offset, vs.data() + offset));
+    offset += ch.watched.size();
+  }
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SensorProbe::readEventCoordinates(Vec q, Vec v, std::vector<double> &qs, std::vector<double> &vs)
+{
+  PetscFunctionBeginUser;
+  PetscCall(scatterValues(eventScatter_, q, eventValues_, qs));
+  PetscCall(scatterValues(eventScatter_, v, eventValues_, vs));
   PetscFunctionReturn(0);
 }
 

@@ -41,6 +41,8 @@ void addMonitors(Simulation &sim, const AppOptions &opts, const RunInfo &info)
   sim.addMonitor(std::move(results));
   if (scene.analysis == Scene::Analysis::Dynamic) {
     sim.addMonitor(std::make_unique<FrictionOutput>(sim, writer, opts.quiet));
+    if (!sim.model().eventSources().empty())
+      sim.addMonitor(std::make_unique<TypeEventsOutput>(sim, &writer, opts.quiet));
     if (scene.tracking.interval > 0) sim.addMonitor(std::make_unique<FrequencyTracking>(sim, writer));
     sim.addMonitor(std::make_unique<Checkpointer>(sim, opts.checkpointPath, opts.checkpointInterval, opts.quiet));
   }

@@ -104,7 +104,8 @@ void buildDistance(const ComponentSpec &spec, ModelBuilder &b)
                      "': the two points coincide at t = 0 and no length is given; join coinciding points with a pin");
   const ConstraintItem &item = b.addConstraint(make(length), spec.mark);
   // C = |d| - L: a link that pulls its points together has a positive multiplier.
-  b.addOutputChannel({"distance", spec.name, "tension", "N", item.firstRow() - b.numCoordinates(), 1.0});
+  b.addOutputChannel(
+      OutputChannel::ofMultiplier("distance", spec.name, "tension", "N", item.firstRow() - b.numCoordinates(), 1.0));
 }
 
 } // namespace

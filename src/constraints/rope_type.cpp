@@ -24,7 +24,8 @@ void buildRope(const ComponentSpec &spec, ModelBuilder &b)
   }
   const ConstraintItem &item = b.addConstraint(std::make_shared<Rope>(spec.name, P, Q, R, length), spec.mark);
   // C = L - l1 - l2: a pulling rope has a negative multiplier.
-  b.addOutputChannel({"rope", spec.name, "tension", "N", item.firstRow() - b.numCoordinates(), -1.0});
+  b.addOutputChannel(
+      OutputChannel::ofMultiplier("rope", spec.name, "tension", "N", item.firstRow() - b.numCoordinates(), -1.0));
 }
 
 } // namespace

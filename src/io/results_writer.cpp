@@ -14,6 +14,25 @@
 
 namespace boomdyn {
 
+// Names of the event sources' components and the union of their kinds, in
+// first-seen order: /type_events stores indices into these two lists.
+static std::vector<std::string> eventComponents(const Model &model)
+{
+  std::vector<std::string> names;
+  for (const EventSource &e : model.eventSources())
+    if (std::find(names.begin(), names.end(), e.component) == names.end()) names.push_back(e.component);
+  return names;
+}
+
+static std::vector<std::string> eventKinds(const Model &model)
+{
+  std::vector<std::string> kinds;
+  for (const EventSource &e : model.eventSources())
+    for (const std::string &k : e.kinds)
+      if (std::find(kinds.begin(), kinds.end(), k) == kinds.end()) kinds.push_back(k);
+  return kinds;
+}
+
 namespace {
 
 const char *analysisName(Scene::Analysis a)
@@ -108,6 +127,10 @@ PetscErrorCode ResultsWriter::open(const std::string &path, bool overwrite, cons
       }
       if (!model_.frictionJointNames().empty())
         file_->writeStrings("/layout/friction_joint_names", model_.frictionJointNames());
+      if (!model_.eventSources().empty()) { // /type_events/{component,kind} index these
+        file_->writeStrings("/layout/type_event_components", eventComponents(model_));
+        file_->writeStrings("/layout/type_event_kinds", eventKinds(model_));
+      }
       std::vector<std::string> frames;
       for (const FrameSensor &f : model_.frameSensors()) frames.push_back(f.name);
       if (!frames.empty()) file_->writeStrings("/layout/frame_names", frames);
@@ -384,6 +407,24 @@ PetscErrorCode ResultsWriter::appendEvents(const std::vector<StickSlipEvent> &ev
   PetscFunctionReturn(0);
 }
 
+PetscErrorCode ResultsWriter::appendTypeEvents(const std::vector<TypeEvent> &events)
+{
+  PetscFunctionBeginUser;
+  PetscCall(onRankZero(comm_, rank_, [&] {
+    const std::vector<std::string> names = eventComponents(model_), kinds = eventKinds(model_);
+    for (const TypeEvent &e : events) {
+      file_->appendScalar("/type_events/time", e.t);
+      file_->appendScalarInt("/type_events/component",
+                             static_cast<int>(std::find(names.begin(), names.end(), e.component) - names.begin()));
+      file_->appendScalarInt("/type_events/kind",
+                             static_cast<int>(std::find(kinds.begin(), kinds.end(), e.kind) - kinds.begin()));
+      file_->appendScalarInt("/type_events/direction", e.direction);
+      ++typeEventCount_;
+    }
+  }));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode ResultsWriter::appendTracking(const TrackedModes &m, bool writeShape)
 {
   PetscFunctionBeginUser;
@@ -427,6 +468,8 @@ PetscErrorCode ResultsWriter::finish(const std::string &status, PetscInt steps, 
     }
     if (!model_.frictionJointNames().empty())
       file_->setAttribute("/summary", "stick_slip_events", static_cast<long long>(eventCount_));
+    if (!model_.eventSources().empty())
+      file_->setAttribute("/summary", "type_events", static_cast<long long>(typeEventCount_));
     const bool taken = !file_->stillAtPath();
     file_->close();
     if (taken)

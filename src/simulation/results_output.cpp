@@ -39,18 +39,9 @@ PetscErrorCode ResultsOutput::writeJoints(const RunState &s)
   PetscCall(sim_.sensors().readJoints(s.q, s.lambda, slacks_, multipliers_));
   PetscCall(sim_.sensors().readFrames(s.q, deflections_));
   PetscCall(ropes_.update(sim_.comm(), s.t, multipliers_, tensions));
-  fillOutputs();
+  PetscCall(sim_.sensors().readOutputs(s.q, s.v, multipliers_, outputs_));
   PetscCall(writer_.appendJoints(slacks_, multipliers_, tensions, deflections_, outputs_));
   PetscFunctionReturn(0);
-}
-
-// The registered types' output channels from the gathered multipliers
-// (rank 0 holds them; empty elsewhere).
-void ResultsOutput::fillOutputs()
-{
-  outputs_.clear();
-  if (!multipliers_.empty())
-    for (const OutputChannel &ch : sim_.model().outputChannels()) outputs_.push_back(ch.factor * multipliers_[ch.index]);
 }
 
 PetscErrorCode ResultsOutput::writeOutputs(const RunState &s)
@@ -58,7 +49,7 @@ PetscErrorCode ResultsOutput::writeOutputs(const RunState &s)
   PetscFunctionBeginUser;
   if (sim_.model().outputChannels().empty()) PetscFunctionReturn(0);
   PetscCall(sim_.sensors().readJoints(s.q, s.lambda, slacks_, multipliers_));
-  fillOutputs();
+  PetscCall(sim_.sensors().readOutputs(s.q, s.v, multipliers_, outputs_));
   PetscCall(writer_.appendJoints({}, {}, {}, {}, outputs_));
   PetscFunctionReturn(0);
 }

@@ -20,7 +20,7 @@ FOLDER_LAYERS = {
     "simulation": "simulation", "app": "app", "tools": "app",
 }
 # Plain data and contracts that everything may use.
-CORE = {"time_function", "scene", "work_item", "component_spec", "type_schema", "output_channel",
+CORE = {"time_function", "scene", "work_item", "component_spec", "type_schema", "output_channel", "type_event",
         "gather", "log_events", "petsc_handle", "body", "constraint", "vec2", "version"}
 # Header-only concepts, by the layer they belong to.
 HEADER_LAYERS = {
