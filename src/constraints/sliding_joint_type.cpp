@@ -153,6 +153,79 @@ PostStepHook followTrack(std::shared_ptr<SlidingJoint> joint)
   return hook;
 }
 
+// A pad's state from the watched coordinates: both bodies whole, then s (the
+// contact point moves between track elements, the watched list cannot).
+struct PadWatch {
+  std::vector<PetscInt> watched;
+  PetscInt trackOffset = 0, sliderOffset = 0;
+};
+
+PadWatch padWatch(const SlidingJoint &joint)
+{
+  PadWatch w;
+  for (const Body *body : {&joint.track(), &joint.slider()}) {
+    (body == &joint.track() ? w.trackOffset : w.sliderOffset) = static_cast<PetscInt>(w.watched.size());
+    for (PetscInt k = 0; k < body->numCoordinates(); ++k) w.watched.push_back(body->firstCoordinate() + k);
+  }
+  w.watched.push_back(joint.slackIndex());
+  return w;
+}
+
+// The joint's coordinates (coordinates() order) picked from the watched values.
+std::vector<double> padLocal(const SlidingJoint &joint, const PadWatch &w, const double *x)
+{
+  std::vector<PetscInt> dofs;
+  joint.coordinates(dofs);
+  std::vector<double> out(dofs.size());
+  const CenterlineLocation &tl = joint.trackLocation();
+  for (int i = 0; i < tl.count; ++i) out[i] = x[w.trackOffset + tl.dofs[i] - joint.track().firstCoordinate()];
+  const CenterlineLocation &sl = joint.sliderLocation();
+  for (int i = 0; i < sl.count; ++i)
+    out[tl.count + i] = x[w.sliderOffset + sl.dofs[i] - joint.slider().firstCoordinate()];
+  out.back() = x[w.watched.size() - 1];
+  return out;
+}
+
+// Per pad every step: contact force f (N, along the track normal, on the
+// slider), penetration (|d| - g: > 0 in contact, else minus the free play
+// left) and side (+1, -1 in contact, 0 free); lift-off / contact events
+// with the time interpolated where the penetration crosses 0 inside the step.
+void addPadOutputs(std::shared_ptr<SlidingJoint> joint, const PadContact *pad, ModelBuilder &b)
+{
+  const PadWatch w = padWatch(*joint);
+  auto state = [joint, pad, w](const double *q, const double *v) {
+    const std::vector<double> ql = padLocal(*joint, w, q), vl = padLocal(*joint, w, v);
+    return pad->state(ql.data(), vl.data());
+  };
+  const std::string &name = joint->name();
+  b.addOutputChannel(OutputChannel::ofState("pad", name, "force", "N", w.watched,
+                                            [state](const double *q, const double *v) { return state(q, v).force; }));
+  b.addOutputChannel(OutputChannel::ofState(
+      "pad", name, "penetration", "m", w.watched,
+      [state](const double *q, const double *v) { return state(q, v).penetration; }));
+  b.addOutputChannel(OutputChannel::ofState("pad", name, "side", "", w.watched, [state](const double *q, const double *v) {
+    return static_cast<double>(state(q, v).side);
+  }));
+  auto previous = std::make_shared<PadState>();
+  EventSource source{name, {"lift_off", "contact"}, w.watched, nullptr};
+  source.detect = [state, previous, name, pad](double t, double h, const double *q, const double *v, bool first,
+                                          std::vector<TypeEvent> &out) {
+    const PadState now = state(q, v);
+    const PadState before = *previous;
+    *previous = now;
+    if (first || now.side == before.side) return;
+    // Where the penetration on a side, sigma d - g, crosses zero inside the step (linear).
+    const double g = pad->spec().clearance;
+    auto crossing = [&](int sigma) {
+      const double p0 = sigma * before.gap - g, p1 = sigma * now.gap - g;
+      return p1 == p0 ? t : t - h * p1 / (p1 - p0);
+    };
+    if (before.side != 0) out.push_back({crossing(before.side), name, "lift_off", before.side}); // direction: side left
+    if (now.side != 0) out.push_back({crossing(now.side), name, "contact", now.side});
+  };
+  b.addEventSource(source);
+}
+
 void buildSlidingJoint(const ComponentSpec &spec, ModelBuilder &b)
 {
   const auto &mine = b.scratch(spec.type, spec.name);
@@ -167,6 +240,7 @@ void buildSlidingJoint(const ComponentSpec &spec, ModelBuilder &b)
     const ComponentSpec &p = spec.map("pad");
     pad = b.addPad(std::make_unique<PadContact>(
         joint, PadSpec{p.number("stiffness"), p.number("clearance"), p.number("damping")}));
+    addPadOutputs(joint, pad, b);
   }
   if (spec.has("friction")) { // the normal force: lambda_n (the joint's second row) or the pad's force
     const auto z = static_cast<PetscInt>(mine.at("z"));
