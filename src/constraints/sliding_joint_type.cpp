@@ -5,6 +5,7 @@
 // that holds s (or stops the run when the slider leaves its track). With a
 // `pad` map the normal row gives way to a compliant pad with clearance
 // (PadContact): only the tangential row stays a constraint.
+#include "boomdyn/ancf_beam.hpp"
 #include "boomdyn/lugre_friction.hpp"
 #include "boomdyn/model_builder.hpp"
 #include "boomdyn/pad_contact.hpp"
@@ -226,6 +227,70 @@ void addPadOutputs(std::shared_ptr<SlidingJoint> joint, const PadContact *pad, M
   b.addEventSource(source);
 }
 
+// Stress resultants of a beam at material point x from its element there:
+// N = EA eps, M = EI kappa, Q = dM/dx = EI kappa' (docs/model.md §2.1), with
+// kappa' = (r1 x r3) / |r1|^2 - 2 (r1 x r2)(r1 . r2) / |r1|^4.
+enum class Resultant { Axial, Moment, Shear };
+
+double resultantAt(const AncfBeam &beam, double x, const double *bodyValues, Resultant which)
+{
+  const CenterlineLocation loc = beam.locate(std::clamp(x, 0.0, beam.length()));
+  ancf::Vec8 e;
+  for (int k = 0; k < 8; ++k) e[k] = bodyValues[beam.elementDof(loc.element, k) - beam.firstCoordinate()];
+  const double l = beam.elementLength();
+  const ancf::Section &sec = beam.section();
+  switch (which) {
+  case Resultant::Axial: return sec.EA * ancf::axialStrain(e, loc.xi, l);
+  case Resultant::Moment: return sec.EI * ancf::curvature(e, loc.xi, l);
+  case Resultant::Shear: {
+    const Vec2 r1 = ancf::position(e, loc.xi, l, 1), r2 = ancf::position(e, loc.xi, l, 2),
+               r3 = ancf::position(e, loc.xi, l, 3);
+    auto cross = [](const Vec2 &a, const Vec2 &c) { return a.x() * c.y() - a.y() * c.x(); };
+    const double J2 = r1.squaredNorm();
+    return sec.EI * (cross(r1, r3) / J2 - 2.0 * cross(r1, r2) * r1.dot(r2) / (J2 * J2));
+  }
+  }
+  return 0.0;
+}
+
+// Every sliding joint, every step: the normal force on the slider along the
+// track normal j(s) (lambda_n of a rigid joint, the pad force f of a padded
+// one), and N, M, Q of each beam at the joint: the track at the contact
+// point s, the slider at its slider point.
+void addJointResultants(std::shared_ptr<SlidingJoint> joint, const ConstraintItem &item, const PadContact *pad,
+                        ModelBuilder &b)
+{
+  const std::string &name = joint->name();
+  if (!pad) // C_n = j . (r_i - r_j): the constraint force on the slider is +lambda_n j
+    b.addOutputChannel(OutputChannel::ofMultiplier("joint_resultants", name, "normal_force", "N",
+                                                   item.firstRow() + 1 - b.numCoordinates(), 1.0));
+  const PadWatch w = padWatch(*joint);
+  if (pad)
+    b.addOutputChannel(OutputChannel::ofState("joint_resultants", name, "normal_force", "N", w.watched,
+                                              [joint, pad, w](const double *q, const double *v) {
+                                                const std::vector<double> ql = padLocal(*joint, w, q),
+                                                                          vl = padLocal(*joint, w, v);
+                                                return pad->state(ql.data(), vl.data()).force;
+                                              }));
+  const char *names[3] = {"N", "M", "Q"};
+  const char *units[3] = {"N", "N m", "N"};
+  const Resultant kinds[3] = {Resultant::Axial, Resultant::Moment, Resultant::Shear};
+  for (int side = 0; side < 2; ++side) {
+    const Body &body = side == 0 ? joint->track() : joint->slider();
+    const auto *beam = dynamic_cast<const AncfBeam *>(&body);
+    if (!beam) continue; // a rigid body has no stress resultants
+    const PetscInt offset = side == 0 ? w.trackOffset : w.sliderOffset;
+    const PetscInt slack = static_cast<PetscInt>(w.watched.size()) - 1;
+    const double xP = joint->sliderPoint();
+    for (int k = 0; k < 3; ++k)
+      b.addOutputChannel(OutputChannel::ofState(
+          "joint_resultants", name, std::string(side == 0 ? "track_" : "slider_") + names[k], units[k], w.watched,
+          [beam, offset, slack, side, xP, which = kinds[k]](const double *q, const double *) {
+            return resultantAt(*beam, side == 0 ? q[slack] : xP, q + offset, which);
+          }));
+  }
+}
+
 void buildSlidingJoint(const ComponentSpec &spec, ModelBuilder &b)
 {
   const auto &mine = b.scratch(spec.type, spec.name);
@@ -242,6 +307,7 @@ void buildSlidingJoint(const ComponentSpec &spec, ModelBuilder &b)
         joint, PadSpec{p.number("stiffness"), p.number("clearance"), p.number("damping")}));
     addPadOutputs(joint, pad, b);
   }
+  addJointResultants(joint, item, pad, b);
   if (spec.has("friction")) { // the normal force: lambda_n (the joint's second row) or the pad's force
     const auto z = static_cast<PetscInt>(mine.at("z"));
     const FrictionSpec fr = frictionOf(spec.map("friction"));
