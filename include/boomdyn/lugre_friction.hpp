@@ -13,6 +13,10 @@
 // Modes: dynamics (cZ > 0) integrate z; at acceleration level (initial
 // conditions) zdot is the law's value; statics and the eigen pencil freeze z
 // (its row is the identity).
+//
+// At a joint with a compliant pad the normal force is the pad's force f(q, v)
+// (PadContact) instead of lambda_n: the item then has no multiplier row, and
+// the Jacobian carries |f|'s derivatives in q and v.
 #pragma once
 
 #include "boomdyn/sliding_joint.hpp"
@@ -37,19 +41,30 @@ struct FrictionSpec {
   double stick_velocity = -1;     // |v_r| below it counts as stick in the output, m/s (< 0: v_s / 10)
 };
 
+class PadContact;
+
 class LuGreFriction : public WorkItem {
 public:
   LuGreFriction(std::shared_ptr<const SlidingJoint> joint, PetscInt zIndex, PetscInt normalRow, const FrictionSpec &spec);
+  // Friction at a padded joint: the normal force is the pad's |f|.
+  LuGreFriction(std::shared_ptr<const SlidingJoint> joint, PetscInt zIndex, const PadContact *pad,
+                const FrictionSpec &spec);
   std::string name() const override { return joint_->name() + ".friction"; }
   void coordinates(std::vector<PetscInt> &dofs) const override;
-  void multiplierRows(std::vector<PetscInt> &rows) const override { rows.assign(1, normalRow_); }
+  void multiplierRows(std::vector<PetscInt> &rows) const override
+  {
+    if (pad_) rows.clear();
+    else rows.assign(1, normalRow_);
+  }
   void evaluate(const AssemblyContext &ctx, const ItemValues &in, double *residual, double *J) const override;
 
   // Stribeck curve g(v) (dimensionless) and the steady-sliding force per unit
   // normal force and the viscous part: g(v) sign(v) |lambda_n| + sigma2 v.
   double stribeck(double v) const;
   PetscInt stateIndex() const { return z_; }
+  // The multiplier row of lambda_n; -1 at a padded joint (pad() gives the force).
   PetscInt normalRow() const { return normalRow_; }
+  const PadContact *pad() const { return pad_; }
   const SlidingJoint &joint() const { return *joint_; }
   // Friction force F_t (N) from the state z, its rate, |lambda_n| and v_r.
   double force(double z, double zdot, double lambdaN, double vr) const
@@ -62,6 +77,7 @@ private:
   std::shared_ptr<const SlidingJoint> joint_;
   PetscInt z_, normalRow_;
   FrictionSpec spec_;
+  const PadContact *pad_ = nullptr;
 };
 
 } // namespace boomdyn

@@ -43,6 +43,7 @@ struct FrameSensor {
 };
 
 class LuGreFriction;
+class PadContact;
 
 class Model {
 public:
@@ -75,6 +76,8 @@ public:
   const std::vector<std::string> &frictionJointNames() const { return frictionJoints_; }
   // The friction elements, in the order of frictionJointNames().
   const std::vector<const LuGreFriction *> &frictions() const { return frictions_; }
+  // The compliant pads of sliding joints (sliding_joint's `pad`), in scene order.
+  const std::vector<const PadContact *> &pads() const { return pads_; }
   const Scene &scene() const { return scene_; }
   // Initial coordinates (undeformed bodies as placed in the scene), size nq.
   std::vector<double> initialCoordinates() const;
@@ -119,6 +122,7 @@ private:
   std::vector<PetscInt> firstOrder_;
   std::vector<std::string> frictionJoints_;
   std::vector<const LuGreFriction *> frictions_;
+  std::vector<const PadContact *> pads_;
 };
 
 } // namespace boomdyn

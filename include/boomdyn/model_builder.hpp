@@ -66,6 +66,8 @@ public:
   void addItem(std::unique_ptr<WorkItem> item) { model_.items_.push_back(std::move(item)); }
   void addSlidingJoint(std::shared_ptr<SlidingJoint> joint) { model_.slidingJoints_.push_back(std::move(joint)); }
   void addFriction(std::unique_ptr<LuGreFriction> friction);
+  // A compliant pad; the Model owns it (the pointer stays valid).
+  const PadContact *addPad(std::unique_ptr<PadContact> pad);
   void addSensor(Sensor sensor) { model_.sensors_.push_back(std::move(sensor)); }
   void addFrameSensor(FrameSensor frame) { model_.frameSensors_.push_back(std::move(frame)); }
   void addOutputChannel(OutputChannel channel) { model_.outputChannels_.push_back(std::move(channel)); }

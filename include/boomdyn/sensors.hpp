@@ -26,7 +26,8 @@ public:
   // Slack coordinates of the sliding joints (from q) and all unscaled
   // multipliers (from lambda, layout of x), on rank 0.
   PetscErrorCode readJoints(Vec q, Vec lambda, std::vector<double> &slacks, std::vector<double> &multipliers);
-  // Per frictional joint: s, ds/dt, z, dz/dt, lambda_n (rank 0).
+  // Per frictional joint: s, ds/dt, z, dz/dt, normal force (rank 0): lambda_n,
+  // or at a padded joint the pad force f.
   PetscErrorCode readFriction(Vec q, Vec v, Vec lambda, std::vector<double> &values);
   // Moving-frame deflections of the scene's frame sensors (rank 0).
   PetscErrorCode readFrames(Vec q, std::vector<double> &deflections);
@@ -43,9 +44,14 @@ private:
   const Model &model_;
   std::vector<CenterlineLocation> locations_;
   PetscHandle<VecScatter> scatter_, slackScatter_, lambdaScatter_, frameScatter_, frictionScatter_, normalScatter_,
-      channelScatter_, eventScatter_;
+      channelScatter_, eventScatter_, padScatter_;
   PetscHandle<Vec> gathered_, slacks_, multipliers_, frameValues_, frictionValues_, normalValues_, channelValues_,
-      eventValues_;
+      eventValues_, padValues_;
+  struct PadFriction {
+    std::size_t friction; // index in Model::frictions()
+    PetscInt offset;      // of the track's coordinates in padValues_; the slider's, then s follow
+  };
+  std::vector<PadFriction> padFrictions_;
   struct Frame {
     const Body *body;
     double s;        // material point measured

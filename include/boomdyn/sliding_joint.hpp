@@ -14,6 +14,11 @@
 // The coordinates the rows touch depend on which track element holds s:
 // relocate() moves the joint to the element that holds a new s; the caller
 // rebuilds the assembly pattern when it returns true.
+//
+// A joint with a compliant pad (docs/model.md §2.1, pad variant) keeps only
+// row d as a constraint (numRows() == 1): the normal direction is left to a
+// PadContact force item, which reads the signed gap d = -C_n and its
+// derivatives through normalGap().
 #pragma once
 
 #include "boomdyn/body.hpp"
@@ -24,12 +29,18 @@ namespace boomdyn {
 class SlidingJoint : public Constraint {
 public:
   SlidingJoint(std::string name, const Body &track, const Body &slider, double sliderPoint, PetscInt slackIndex,
-               double s0);
+               double s0, bool normalRow = true);
   std::string name() const override { return name_; }
-  int numRows() const override { return 2; }
+  int numRows() const override { return normalRow_ ? 2 : 1; }
+  // False when a pad takes the normal direction (only row d is a constraint).
+  bool hasNormalRow() const { return normalRow_; }
   void coordinates(std::vector<PetscInt> &dofs) const override;
   void evaluate(double t, const double *q, const double *v, const double *w, ConstraintEval &out) const override;
   bool dependsOnTime() const override { return false; }
+  // The signed normal gap d = j(s) . (r_j(x_P) - r_i(s)) = -C_n of the slider
+  // point (positive on the left of the track's direction), its gradient d_q
+  // and Hessian d_qq over coordinates() (row n of evaluate() with w = (0, 1)).
+  void normalGap(const double *q, double &d, Eigen::VectorXd &dq, Eigen::MatrixXd &dqq) const;
 
   PetscInt slackIndex() const { return slack_; }
   const Body &track() const { return *track_; }
@@ -51,11 +62,15 @@ public:
   bool onTrack(double s) const { return s >= 0.0 && s <= track_->length(); }
 
 private:
+  // Both rows; w (two weights) may be null.
+  void evaluateRows(const double *q, const double *v, const double *w, ConstraintEval &out) const;
+
   std::string name_;
   const Body *track_, *slider_;
   double xP_;
   PetscInt slack_;
   CenterlineLocation trackLoc_, sliderLoc_;
+  bool normalRow_;
 };
 
 } // namespace boomdyn

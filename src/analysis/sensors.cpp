@@ -1,5 +1,7 @@
 #include "boomdyn/sensors.hpp"
 
+#include "boomdyn/pad_contact.hpp"
+
 #include "boomdyn/gather.hpp"
 
 #include "boomdyn/lugre_friction.hpp"
@@ -54,6 +56,27 @@ PetscErrorCode SensorProbe::readFriction(Vec q, Vec v, Vec lambda, std::vector<d
   PetscCall(scatterValues(frictionScatter_, v, frictionValues_, vs));
   PetscCall(scatterValues(normalScatter_, lambda, normalValues_, ln));
   values.clear();
+  if (!padFrictions_.empty()) { // the normal force of a padded joint is the pad's f(q, v)
+    std::vector<double> pq, pv;
+    PetscCall(scatterValues(padScatter_, q, padValues_, pq));
+    PetscCall(scatterValues(padScatter_, v, padValues_, pv));
+    if (rank_ == 0)
+      for (const PadFriction &p : padFrictions_) {
+        const LuGreFriction &f = *model_.frictions()[p.friction];
+        const SlidingJoint &joint = f.joint();
+        std::vector<PetscInt> dofs;
+        joint.coordinates(dofs);
+        const Body &track = joint.track(), &slider = joint.slider();
+        const CenterlineLocation &tl = joint.trackLocation(), &sl = joint.sliderLocation();
+        std::vector<double> lq(dofs.size()), lv(dofs.size());
+        auto pick = [&](PetscInt at, std::size_t i) { lq[i] = pq[at], lv[i] = pv[at]; };
+        for (int i = 0; i < tl.count; ++i) pick(p.offset + tl.dofs[i] - track.firstCoordinate(), i);
+        const PetscInt sliderOffset = p.offset + track.numCoordinates();
+        for (int i = 0; i < sl.count; ++i) pick(sliderOffset + sl.dofs[i] - slider.firstCoordinate(), tl.count + i);
+        pick(sliderOffset + slider.numCoordinates(), dofs.size() - 1);
+        ln[p.friction] = f.pad()->state(lq.data(), lv.data()).force;
+      }
+  }
   for (std::size_t k = 0; k < ln.size(); ++k) {
     const double row[5] = {qs[2 * k], vs[2 * k], qs[2 * k + 1], vs[2 * k + 1], ln[k]};
     values.insert(values.end(), row, row + 5);
@@ -101,11 +124,21 @@ PetscErrorCode SensorProbe::setUp(Vec layout)
   }
   PetscCall(scatterToRankZero(layout, rank_, frameIdx, frameScatter_.address(), frameValues_.address()));
   std::vector<PetscInt> frictionIdx, normalIdx;
-  for (const LuGreFriction *f : model_.frictions()) {
+  std::vector<PetscInt> padIdx; // padded joints: track and slider whole, then s (the contact moves)
+  for (std::size_t k = 0; k < model_.frictions().size(); ++k) {
+    const LuGreFriction *f = model_.frictions()[k];
     frictionIdx.push_back(f->joint().slackIndex());
     frictionIdx.push_back(f->stateIndex());
-    normalIdx.push_back(f->normalRow());
+    if (f->pad()) { // a placeholder row (readFriction replaces the value by the pad force)
+      normalIdx.push_back(model_.numCoordinates());
+      padFrictions_.push_back({k, static_cast<PetscInt>(padIdx.size())});
+      for (const Body *body : {&f->joint().track(), &f->joint().slider()})
+        for (PetscInt k = 0; k < body->numCoordinates(); ++k) padIdx.push_back(body->firstCoordinate() + k);
+      padIdx.push_back(f->joint().slackIndex());
+    } else
+      normalIdx.push_back(f->normalRow());
   }
+  PetscCall(scatterToRankZero(layout, rank_, padIdx, padScatter_.address(), padValues_.address()));
   PetscCall(scatterToRankZero(layout, rank_, frictionIdx, frictionScatter_.address(), frictionValues_.address()));
   PetscCall(scatterToRankZero(layout, rank_, normalIdx, normalScatter_.address(), normalValues_.address()));
   // State output channels and event sources: their watched coordinates, one after the other.

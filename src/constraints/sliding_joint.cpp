@@ -32,9 +32,9 @@ void rowFunction(const Mat2 &A, const Vec2 &d, const Vec2 &t, double &g, Vec4 &g
 } // namespace
 
 SlidingJoint::SlidingJoint(std::string name, const Body &track, const Body &slider, double sliderPoint,
-                           PetscInt slackIndex, double s0)
+                           PetscInt slackIndex, double s0, bool normalRow)
   : name_(std::move(name)), track_(&track), slider_(&slider), xP_(sliderPoint), slack_(slackIndex),
-    trackLoc_(track.locate(s0)), sliderLoc_(slider.locate(sliderPoint))
+    trackLoc_(track.locate(s0)), sliderLoc_(slider.locate(sliderPoint)), normalRow_(normalRow)
 {
 }
 
@@ -57,6 +57,30 @@ bool SlidingJoint::relocate(double s)
 }
 
 void SlidingJoint::evaluate(double, const double *q, const double *v, const double *w, ConstraintEval &out) const
+{
+  if (normalRow_) {
+    evaluateRows(q, v, w, out);
+    return;
+  }
+  const double w2[2] = {w ? w[0] : 0.0, 0.0};
+  evaluateRows(q, v, w ? w2 : nullptr, out);
+  const Eigen::Index n = out.Cq.cols();
+  out.C.conservativeResize(1);
+  out.Cq.conservativeResize(1, n);
+  if (v) out.gamma.conservativeResize(1);
+}
+
+void SlidingJoint::normalGap(const double *q, double &d, Eigen::VectorXd &dq, Eigen::MatrixXd &dqq) const
+{
+  const double w[2] = {0.0, 1.0};
+  ConstraintEval ev;
+  evaluateRows(q, nullptr, w, ev);
+  d = -ev.C[1];
+  dq = -ev.Cq.row(1).transpose();
+  dqq = -ev.H;
+}
+
+void SlidingJoint::evaluateRows(const double *q, const double *v, const double *w, ConstraintEval &out) const
 {
   const int ni = trackLoc_.count, nj = sliderLoc_.count, n = ni + nj + 1, is = n - 1;
   const double s = q[is];

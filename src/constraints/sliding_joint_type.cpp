@@ -2,9 +2,13 @@
 // slider body moves along the centerline of the track body. Adds the slack
 // (contact) coordinate s, optionally LuGre friction with its bristle state
 // z, and a post-step hook that moves the contact point to the track element
-// that holds s (or stops the run when the slider leaves its track).
+// that holds s (or stops the run when the slider leaves its track). With a
+// `pad` map the normal row gives way to a compliant pad with clearance
+// (PadContact): only the tangential row stays a constraint.
+#include "boomdyn/ancf_beam.hpp"
 #include "boomdyn/lugre_friction.hpp"
 #include "boomdyn/model_builder.hpp"
+#include "boomdyn/pad_contact.hpp"
 #include "boomdyn/physics_type.hpp"
 #include "boomdyn/sliding_joint.hpp"
 
@@ -40,6 +44,30 @@ const TypeSchema &frictionSchema()
             "relative speed below which the output counts the joint as sticking")
             .positive()
             .derived("v_s / 10"),
+    };
+    return s;
+  }();
+  return schema;
+}
+
+// Compliant pad with clearance (docs/model.md §2.1, pad variant).
+const TypeSchema &padSchema()
+{
+  static const TypeSchema schema = [] {
+    TypeSchema s;
+    s.section = "constraints";
+    s.type = "pad";
+    s.summary = "Compliant slide pad with clearance at a sliding joint (the map under a sliding_joint's `pad` key): "
+                "the slider point moves freely across the track within +-clearance and meets an elastic pad on "
+                "either side.";
+    s.keys = {
+        key("stiffness", ValueKind::Number, "N/m", Need::Required, "pad stiffness k_pad").positive(),
+        key("clearance", ValueKind::Number, "m", Need::Optional, "free play g on either side of the track")
+            .nonNegative()
+            .byDefault(0.0),
+        key("damping", ValueKind::Number, "N s/m", Need::Optional, "pad damping c_pad while in contact")
+            .nonNegative()
+            .byDefault(0.0),
     };
     return s;
   }();
@@ -126,16 +154,166 @@ PostStepHook followTrack(std::shared_ptr<SlidingJoint> joint)
   return hook;
 }
 
+// A pad's state from the watched coordinates: both bodies whole, then s (the
+// contact point moves between track elements, the watched list cannot).
+struct PadWatch {
+  std::vector<PetscInt> watched;
+  PetscInt trackOffset = 0, sliderOffset = 0;
+};
+
+PadWatch padWatch(const SlidingJoint &joint)
+{
+  PadWatch w;
+  for (const Body *body : {&joint.track(), &joint.slider()}) {
+    (body == &joint.track() ? w.trackOffset : w.sliderOffset) = static_cast<PetscInt>(w.watched.size());
+    for (PetscInt k = 0; k < body->numCoordinates(); ++k) w.watched.push_back(body->firstCoordinate() + k);
+  }
+  w.watched.push_back(joint.slackIndex());
+  return w;
+}
+
+// The joint's coordinates (coordinates() order) picked from the watched values.
+std::vector<double> padLocal(const SlidingJoint &joint, const PadWatch &w, const double *x)
+{
+  std::vector<PetscInt> dofs;
+  joint.coordinates(dofs);
+  std::vector<double> out(dofs.size());
+  const CenterlineLocation &tl = joint.trackLocation();
+  for (int i = 0; i < tl.count; ++i) out[i] = x[w.trackOffset + tl.dofs[i] - joint.track().firstCoordinate()];
+  const CenterlineLocation &sl = joint.sliderLocation();
+  for (int i = 0; i < sl.count; ++i)
+    out[tl.count + i] = x[w.sliderOffset + sl.dofs[i] - joint.slider().firstCoordinate()];
+  out.back() = x[w.watched.size() - 1];
+  return out;
+}
+
+// Per pad every step: contact force f (N, along the track normal, on the
+// slider), penetration (|d| - g: > 0 in contact, else minus the free play
+// left) and side (+1, -1 in contact, 0 free); lift-off / contact events
+// with the time interpolated where the penetration crosses 0 inside the step.
+void addPadOutputs(std::shared_ptr<SlidingJoint> joint, const PadContact *pad, ModelBuilder &b)
+{
+  const PadWatch w = padWatch(*joint);
+  auto state = [joint, pad, w](const double *q, const double *v) {
+    const std::vector<double> ql = padLocal(*joint, w, q), vl = padLocal(*joint, w, v);
+    return pad->state(ql.data(), vl.data());
+  };
+  const std::string &name = joint->name();
+  b.addOutputChannel(OutputChannel::ofState("pad", name, "force", "N", w.watched,
+                                            [state](const double *q, const double *v) { return state(q, v).force; }));
+  b.addOutputChannel(OutputChannel::ofState(
+      "pad", name, "penetration", "m", w.watched,
+      [state](const double *q, const double *v) { return state(q, v).penetration; }));
+  b.addOutputChannel(OutputChannel::ofState("pad", name, "side", "", w.watched, [state](const double *q, const double *v) {
+    return static_cast<double>(state(q, v).side);
+  }));
+  auto previous = std::make_shared<PadState>();
+  EventSource source{name, {"lift_off", "contact"}, w.watched, nullptr};
+  source.detect = [state, previous, name, pad](double t, double h, const double *q, const double *v, bool first,
+                                          std::vector<TypeEvent> &out) {
+    const PadState now = state(q, v);
+    const PadState before = *previous;
+    *previous = now;
+    if (first || now.side == before.side) return;
+    // Where the penetration on a side, sigma d - g, crosses zero inside the step (linear).
+    const double g = pad->spec().clearance;
+    auto crossing = [&](int sigma) {
+      const double p0 = sigma * before.gap - g, p1 = sigma * now.gap - g;
+      return p1 == p0 ? t : t - h * p1 / (p1 - p0);
+    };
+    if (before.side != 0) out.push_back({crossing(before.side), name, "lift_off", before.side}); // direction: side left
+    if (now.side != 0) out.push_back({crossing(now.side), name, "contact", now.side});
+  };
+  b.addEventSource(source);
+}
+
+// Stress resultants of a beam at material point x from its element there:
+// N = EA eps, M = EI kappa, Q = dM/dx = EI kappa' (docs/model.md §2.1), with
+// kappa' = (r1 x r3) / |r1|^2 - 2 (r1 x r2)(r1 . r2) / |r1|^4.
+enum class Resultant { Axial, Moment, Shear };
+
+double resultantAt(const AncfBeam &beam, double x, const double *bodyValues, Resultant which)
+{
+  const CenterlineLocation loc = beam.locate(std::clamp(x, 0.0, beam.length()));
+  ancf::Vec8 e;
+  for (int k = 0; k < 8; ++k) e[k] = bodyValues[beam.elementDof(loc.element, k) - beam.firstCoordinate()];
+  const double l = beam.elementLength();
+  const ancf::Section &sec = beam.section();
+  switch (which) {
+  case Resultant::Axial: return sec.EA * ancf::axialStrain(e, loc.xi, l);
+  case Resultant::Moment: return sec.EI * ancf::curvature(e, loc.xi, l);
+  case Resultant::Shear: {
+    const Vec2 r1 = ancf::position(e, loc.xi, l, 1), r2 = ancf::position(e, loc.xi, l, 2),
+               r3 = ancf::position(e, loc.xi, l, 3);
+    auto cross = [](const Vec2 &a, const Vec2 &c) { return a.x() * c.y() - a.y() * c.x(); };
+    const double J2 = r1.squaredNorm();
+    return sec.EI * (cross(r1, r3) / J2 - 2.0 * cross(r1, r2) * r1.dot(r2) / (J2 * J2));
+  }
+  }
+  return 0.0;
+}
+
+// Every sliding joint, every step: the normal force on the slider along the
+// track normal j(s) (lambda_n of a rigid joint, the pad force f of a padded
+// one), and N, M, Q of each beam at the joint: the track at the contact
+// point s, the slider at its slider point.
+void addJointResultants(std::shared_ptr<SlidingJoint> joint, const ConstraintItem &item, const PadContact *pad,
+                        ModelBuilder &b)
+{
+  const std::string &name = joint->name();
+  if (!pad) // C_n = j . (r_i - r_j): the constraint force on the slider is +lambda_n j
+    b.addOutputChannel(OutputChannel::ofMultiplier("joint_resultants", name, "normal_force", "N",
+                                                   item.firstRow() + 1 - b.numCoordinates(), 1.0));
+  const PadWatch w = padWatch(*joint);
+  if (pad)
+    b.addOutputChannel(OutputChannel::ofState("joint_resultants", name, "normal_force", "N", w.watched,
+                                              [joint, pad, w](const double *q, const double *v) {
+                                                const std::vector<double> ql = padLocal(*joint, w, q),
+                                                                          vl = padLocal(*joint, w, v);
+                                                return pad->state(ql.data(), vl.data()).force;
+                                              }));
+  const char *names[3] = {"N", "M", "Q"};
+  const char *units[3] = {"N", "N m", "N"};
+  const Resultant kinds[3] = {Resultant::Axial, Resultant::Moment, Resultant::Shear};
+  for (int side = 0; side < 2; ++side) {
+    const Body &body = side == 0 ? joint->track() : joint->slider();
+    const auto *beam = dynamic_cast<const AncfBeam *>(&body);
+    if (!beam) continue; // a rigid body has no stress resultants
+    const PetscInt offset = side == 0 ? w.trackOffset : w.sliderOffset;
+    const PetscInt slack = static_cast<PetscInt>(w.watched.size()) - 1;
+    const double xP = joint->sliderPoint();
+    for (int k = 0; k < 3; ++k)
+      b.addOutputChannel(OutputChannel::ofState(
+          "joint_resultants", name, std::string(side == 0 ? "track_" : "slider_") + names[k], units[k], w.watched,
+          [beam, offset, slack, side, xP, which = kinds[k]](const double *q, const double *) {
+            return resultantAt(*beam, side == 0 ? q[slack] : xP, q + offset, which);
+          }));
+  }
+}
+
 void buildSlidingJoint(const ComponentSpec &spec, ModelBuilder &b)
 {
   const auto &mine = b.scratch(spec.type, spec.name);
+  const bool padded = spec.has("pad");
   auto joint = std::make_shared<SlidingJoint>(spec.name, b.body(spec.text("track")), b.body(spec.text("body")),
-                                              spec.number("at"), static_cast<PetscInt>(mine.at("slack")), mine.at("s0"));
+                                              spec.number("at"), static_cast<PetscInt>(mine.at("slack")), mine.at("s0"),
+                                              !padded);
   b.addSlidingJoint(joint);
   const ConstraintItem &item = b.addConstraint(joint, spec.mark);
-  if (spec.has("friction")) // lambda_n is the joint's second row
-    b.addFriction(std::make_unique<LuGreFriction>(joint, static_cast<PetscInt>(mine.at("z")), item.firstRow() + 1,
-                                                  frictionOf(spec.map("friction"))));
+  const PadContact *pad = nullptr;
+  if (padded) {
+    const ComponentSpec &p = spec.map("pad");
+    pad = b.addPad(std::make_unique<PadContact>(
+        joint, PadSpec{p.number("stiffness"), p.number("clearance"), p.number("damping")}));
+    addPadOutputs(joint, pad, b);
+  }
+  addJointResultants(joint, item, pad, b);
+  if (spec.has("friction")) { // the normal force: lambda_n (the joint's second row) or the pad's force
+    const auto z = static_cast<PetscInt>(mine.at("z"));
+    const FrictionSpec fr = frictionOf(spec.map("friction"));
+    if (pad) b.addFriction(std::make_unique<LuGreFriction>(joint, z, pad, fr));
+    else b.addFriction(std::make_unique<LuGreFriction>(joint, z, item.firstRow() + 1, fr));
+  }
   b.addPostStepHook(followTrack(joint));
 }
 
@@ -155,6 +333,10 @@ PhysicsType slidingJointType()
       key("friction", ValueKind::Map, "", Need::Optional, "LuGre friction parameters (table below)")
           .holding(frictionSchema())
           .derived("frictionless"),
+      key("pad", ValueKind::Map, "", Need::Optional,
+          "compliant pad with clearance in place of the rigid normal condition (table below)")
+          .holding(padSchema())
+          .derived("rigid (bilateral, no clearance)"),
   };
   const std::string reason =
       "not allowed for a sliding_joint (it names the slider point with body/at and the track with 'track')";

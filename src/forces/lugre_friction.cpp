@@ -1,5 +1,7 @@
 #include "boomdyn/lugre_friction.hpp"
 
+#include "boomdyn/pad_contact.hpp"
+
 #include <unsupported/Eigen/AutoDiff>
 
 #include <array>
@@ -25,6 +27,12 @@ LuGreFriction::LuGreFriction(std::shared_ptr<const SlidingJoint> joint, PetscInt
 {
 }
 
+LuGreFriction::LuGreFriction(std::shared_ptr<const SlidingJoint> joint, PetscInt zIndex, const PadContact *pad,
+                             const FrictionSpec &spec)
+  : joint_(std::move(joint)), z_(zIndex), normalRow_(-1), spec_(spec), pad_(pad)
+{
+}
+
 void LuGreFriction::coordinates(std::vector<PetscInt> &dofs) const
 {
   joint_->coordinates(dofs); // track element, slider element, slack s
@@ -39,7 +47,8 @@ double LuGreFriction::stribeck(double v) const
 void LuGreFriction::evaluate(const AssemblyContext &ctx, const ItemValues &in, double *residual, double *J) const
 {
   const CenterlineLocation &tl = joint_->trackLocation(), &sl = joint_->sliderLocation();
-  const int ni = tl.count, nj = sl.count, is = ni + nj, iz = is + 1, il = iz + 1, n = il + 1;
+  // Unknowns: track element, slider element, s, z, then lambda_n (none with a pad).
+  const int ni = tl.count, nj = sl.count, is = ni + nj, iz = is + 1, il = iz + 1, n = pad_ ? il : il + 1;
   const Kinematics &k = ctx.kin;
   const bool integrate = k.cZ > 0, accelerationLevel = ctx.accelerationLevel;
   // The mass pencil of an eigen-analysis (cQ = 0 away from the acceleration
@@ -103,7 +112,15 @@ void LuGreFriction::evaluate(const AssemblyContext &ctx, const ItemValues &in, d
   // Dynamics: zdot from the time discretization (equal to `law` at convergence);
   // initial conditions: the law's value; statics / eigen: z frozen, no rate.
   const AD zdot = integrate ? variable(in.v[iz], iz, k.cZ) : (accelerationLevel ? law : constant(0.0));
-  const AD lambda = variable(ctx.sigma * in.lambda[0], il, ctx.sigma);
+  AD lambda;
+  if (pad_) { // the pad force f(q, v) over the joint's coordinates (0 .. is)
+    double fp;
+    Eigen::VectorXd fq, fv;
+    pad_->force(in.q, in.v, fp, fq, fv);
+    lambda = constant(fp);
+    for (int m = 0; m <= is; ++m) lambda.derivatives()[m] += k.cQ * fq[m] + k.cV * fv[m];
+  } else
+    lambda = variable(ctx.sigma * in.lambda[0], il, ctx.sigma);
   const AD force = (f.sigma0 * z + f.sigma1 * zdot) * absolute(lambda) + f.sigma2 * vr;
 
   std::array<AD, kMaxUnknowns> r;

@@ -1,6 +1,7 @@
 #include "boomdyn/model.hpp"
 
 #include "boomdyn/lugre_friction.hpp"
+#include "boomdyn/pad_contact.hpp"
 #include "boomdyn/model_builder.hpp"
 #include "boomdyn/physics_type.hpp"
 
@@ -75,6 +76,14 @@ void ModelBuilder::addFriction(std::unique_ptr<LuGreFriction> friction)
 {
   model_.frictions_.push_back(friction.get());
   model_.items_.push_back(std::move(friction));
+}
+
+const PadContact *ModelBuilder::addPad(std::unique_ptr<PadContact> pad)
+{
+  const PadContact *added = pad.get();
+  model_.pads_.push_back(added);
+  model_.items_.push_back(std::move(pad));
+  return added;
 }
 
 const Body *Model::findBody(const std::string &name) const

@@ -142,6 +142,10 @@ TEST_P(SlidingJointKernel, DerivativesMatchFiniteDifferences)
   // (the kernel then extrapolates the element's cubic), which is fine for a
   // derivative check.
   checkConstraint(joint, q0, 21);
+  // With a pad only the tangential row is a constraint (C_d of the same joint).
+  SlidingJoint padded("slide_pad", track, slider, 0.3, slack, s, false);
+  ASSERT_EQ(padded.numRows(), 1);
+  checkConstraint(padded, q0, 21);
 }
 
 INSTANTIATE_TEST_SUITE_P(SlackPositions, SlidingJointKernel, ::testing::Values(0.05, 0.8, 1.0, 1.37, 1.95));
