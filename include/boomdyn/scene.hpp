@@ -23,9 +23,9 @@ struct SectionSpec {
   double etaAxial = 0, etaBending = 0;
   // Axial strain treatment of ANCF beams (ancf::AxialIntegration, option
   // -boom_axial_integration): full (5 Gauss points), reduced (3), assumed
-  // (projected strain, no membrane locking; docs/model.md §1.1).
+  // (default: projected strain, no membrane locking; docs/model.md §1.1).
   enum class AxialIntegration { Full, Reduced, Assumed };
-  AxialIntegration axialIntegration = AxialIntegration::Full;
+  AxialIntegration axialIntegration = AxialIntegration::Assumed;
 };
 
 // A body as its type (src/bodies/*_type.cpp) describes it after reading,

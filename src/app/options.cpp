@@ -170,10 +170,10 @@ PetscErrorCode readSceneOverrides(PetscOptionItems *PetscOptionsObject, Scene *s
     PetscCall(optionNumber(PetscOptionsObject, name.c_str(), help.c_str(), &n));
     b.elements = static_cast<int>(n);
   }
-  std::string axial = "full";
+  std::string axial = "assumed";
   PetscCall(optionString(PetscOptionsObject, "-boom_axial_integration",
-                         "Axial strain of the ANCF element: full (5 Gauss points), reduced (3) or assumed "
-                         "(projected strain: no membrane locking)",
+                         "Axial strain of the ANCF element: assumed (projected strain: no membrane locking), full "
+                         "(5 Gauss points) or reduced (3)",
                          &axial));
   PetscCheck(axial == "full" || axial == "reduced" || axial == "assumed", PETSC_COMM_WORLD, PETSC_ERR_USER_INPUT,
              "-boom_axial_integration must be full, reduced or assumed (got '%s')", axial.c_str());
