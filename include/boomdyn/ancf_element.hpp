@@ -17,19 +17,26 @@ using Vec8 = Eigen::Matrix<double, 8, 1>;
 using Mat8 = Eigen::Matrix<double, 8, 8>;
 using Mat28 = Eigen::Matrix<double, 2, 8>;
 
-// Quadrature of the axial term (docs/model.md §1.1, "Axial integration").
+// Treatment of the axial strain (docs/model.md §1.1, "Axial strain").
 // Full: axial and bending energy on the same 5 Gauss points. Reduced: the
-// axial energy on 3 Gauss points (selective reduced integration, relieves
-// membrane locking of slender beams in bending), the bending energy on 5.
-// 3 points integrate the linearized axial stiffness exactly, so reduced
-// integration adds no zero-energy mode.
-enum class AxialIntegration { Full, Reduced };
+// axial energy on 3 Gauss points (selective reduced integration), the
+// bending energy on 5. Assumed: the Green strain projected in L2 onto linear
+// polynomials per element (assumed strain of a Hellinger-Reissner mixed form
+// with the stress eliminated), plus the pointwise strain with the small weight
+// assumedPointwiseWeight() that stabilizes the one axial zero-energy mode of
+// the projection. Reduced still locks at rate 2 in the inextensible limit (3
+// constraints per element leave 1 bending freedom); Assumed (2 per element)
+// converges at rate 4 at every EA L^2/EI (docs/verification.md).
+enum class AxialIntegration { Full, Reduced, Assumed };
 
 struct Section {
   double EA = 0, EI = 0, rhoA = 0;
   // Kelvin-Voigt retardation times (s): N = EA (eps + etaA eps'), M = EI (K + etaB K').
   double etaA = 0, etaB = 0;
   AxialIntegration axialIntegration = AxialIntegration::Full;
+  // Length of the beam (m) that scales the pointwise part of the Assumed
+  // axial energy (kAssumedStiffness); 0: the element length.
+  double length = 0;
   bool damped() const { return etaA > 0 || etaB > 0; }
 };
 
@@ -73,5 +80,16 @@ Vec8 straightElement(const Vec2 &p0, const Vec2 &dir, double l);
 // discretization error of the cubic interpolation.
 constexpr int kGaussPoints = 5;
 constexpr int kReducedAxialPoints = 3;
+
+// Assumed axial strain: basis functions per element (1, xi: linear), and c of
+// the pointwise weight gamma = min(1, c EI / (EA L^2)) with L = Section::length:
+// the pointwise part has the stiffness c EI / L^2 of the beam's bending scale,
+// independent of the mesh, so it neither locks (gamma EA l^2/EI = c (l/L)^2 -> 0)
+// nor spoils the rate; beams with EA L^2/EI <= c get the full element, bit for bit.
+// c = 1e4, not smaller: with 1e3 the stabilized mode was too soft for the
+// whip of the soft flexible_pendulum scene (no mesh convergence there).
+constexpr int kAssumedTerms = 2;
+constexpr double kAssumedStabilization = 1.0e4;
+double assumedPointwiseWeight(const Section &sec, double l);
 
 } // namespace boomdyn::ancf

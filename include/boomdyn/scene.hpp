@@ -21,9 +21,11 @@ struct SectionSpec {
   double rhoA = 0; // mass per length, kg/m
   // Kelvin-Voigt retardation times of axial strain and curvature, s (flexible bodies; 0: undamped)
   double etaAxial = 0, etaBending = 0;
-  // Axial energy on 3 instead of 5 Gauss points (ancf::AxialIntegration::Reduced;
-  // option -boom_axial_integration reduced): relieves membrane locking.
-  bool reducedAxialIntegration = false;
+  // Axial strain treatment of ANCF beams (ancf::AxialIntegration, option
+  // -boom_axial_integration): full (5 Gauss points), reduced (3), assumed
+  // (default: projected strain, no membrane locking; docs/model.md §1.1).
+  enum class AxialIntegration { Full, Reduced, Assumed };
+  AxialIntegration axialIntegration = AxialIntegration::Assumed;
 };
 
 // A body as its type (src/bodies/*_type.cpp) describes it after reading,

@@ -170,13 +170,17 @@ PetscErrorCode readSceneOverrides(PetscOptionItems *PetscOptionsObject, Scene *s
     PetscCall(optionNumber(PetscOptionsObject, name.c_str(), help.c_str(), &n));
     b.elements = static_cast<int>(n);
   }
-  std::string axial = "full";
+  std::string axial = "assumed";
   PetscCall(optionString(PetscOptionsObject, "-boom_axial_integration",
-                         "Gauss points of the ANCF axial energy: full (5, as bending) or reduced (3: no membrane locking)",
+                         "Axial strain of the ANCF element: assumed (projected strain: no membrane locking), full "
+                         "(5 Gauss points) or reduced (3)",
                          &axial));
-  PetscCheck(axial == "full" || axial == "reduced", PETSC_COMM_WORLD, PETSC_ERR_USER_INPUT,
-             "-boom_axial_integration must be full or reduced (got '%s')", axial.c_str());
-  for (BodySpec &b : scene->bodies) b.section.reducedAxialIntegration = axial == "reduced";
+  PetscCheck(axial == "full" || axial == "reduced" || axial == "assumed", PETSC_COMM_WORLD, PETSC_ERR_USER_INPUT,
+             "-boom_axial_integration must be full, reduced or assumed (got '%s')", axial.c_str());
+  const SectionSpec::AxialIntegration treatment = axial == "reduced" ? SectionSpec::AxialIntegration::Reduced
+                                                  : axial == "assumed" ? SectionSpec::AxialIntegration::Assumed
+                                                                       : SectionSpec::AxialIntegration::Full;
+  for (BodySpec &b : scene->bodies) b.section.axialIntegration = treatment;
   DynamicSpec &d = scene->dynamic;
   double dt = d.dt;
   PetscCall(optionNumber(PetscOptionsObject, "-ts_dt", "Time step (largest step with -boom_adaptive_tol)", &dt, &set->dt));

@@ -29,7 +29,12 @@ std::optional<SpecIssue> checkAncfBeam(const ComponentSpec &spec, const Scene &)
 void buildAncfBeam(const BodySpec &b, BodyBuilder &builder)
 {
   ancf::Section sec{b.section.EA, b.section.EI, b.section.rhoA, b.section.etaAxial, b.section.etaBending};
-  if (b.section.reducedAxialIntegration) sec.axialIntegration = ancf::AxialIntegration::Reduced;
+  sec.length = b.length;
+  switch (b.section.axialIntegration) {
+  case SectionSpec::AxialIntegration::Full: sec.axialIntegration = ancf::AxialIntegration::Full; break;
+  case SectionSpec::AxialIntegration::Reduced: sec.axialIntegration = ancf::AxialIntegration::Reduced; break;
+  case SectionSpec::AxialIntegration::Assumed: sec.axialIntegration = ancf::AxialIntegration::Assumed; break;
+  }
   auto owned = std::make_unique<AncfBeam>(b.name, b.length, b.elements, sec, Vec2(b.origin[0], b.origin[1]), b.angle,
                                           builder.firstCoordinate());
   const AncfBeam &beam = *owned;

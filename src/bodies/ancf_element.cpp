@@ -1,5 +1,6 @@
 #include "boomdyn/ancf_element.hpp"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 
@@ -42,7 +43,7 @@ QuadRule makeRule(AxialIntegration axial)
   QuadRule r{};
   double xi[kGaussPoints], w[kGaussPoints];
   gaussLegendre01(kGaussPoints, xi, w);
-  const double fullAxial = axial == AxialIntegration::Full ? 1.0 : 0.0;
+  const double fullAxial = axial == AxialIntegration::Reduced ? 0.0 : 1.0;
   for (int i = 0; i < kGaussPoints; ++i) r.points[i] = {xi[i], w[i], fullAxial, 1.0};
   r.size = kGaussPoints;
   if (axial == AxialIntegration::Reduced) {
@@ -55,7 +56,7 @@ QuadRule makeRule(AxialIntegration axial)
 const QuadRule &quadRule(AxialIntegration axial)
 {
   static const QuadRule full = makeRule(AxialIntegration::Full), reduced = makeRule(AxialIntegration::Reduced);
-  return axial == AxialIntegration::Full ? full : reduced;
+  return axial == AxialIntegration::Reduced ? reduced : full;
 }
 
 // Scalar cross product a x b = a_x b_y - a_y b_x.
@@ -88,7 +89,89 @@ void addKronecker(const Eigen::Matrix4d &P, const Eigen::Matrix4d &Q, Mat8 &M)
     }
 }
 
+// Orthonormal Legendre polynomials on [0, 1] (degree 0 and 1): the basis of the assumed axial strain.
+// The 5-point rule, computed once.
+struct GaussRule5 {
+  double xi[kGaussPoints], w[kGaussPoints];
+  GaussRule5() { gaussLegendre01(kGaussPoints, xi, w); }
+};
+
+inline double legendre01(int j, double xi) { return j == 0 ? 1.0 : std::sqrt(3.0) * (2.0 * xi - 1.0); }
+
+inline Vec2 slopeAt(const Eigen::Vector4d &s1, const Vec8 &e)
+{
+  Vec2 r1 = Vec2::Zero();
+  for (int k = 0; k < 4; ++k) r1 += s1[k] * e.segment<2>(2 * k);
+  return r1;
+}
+
+// Assumed axial strain (AxialIntegration::Assumed, docs/model.md §1.1): the
+// Green strain projected in L2 onto the polynomials of degree < n on the
+// element, epsbar = sum_j alpha_j phi_j with alpha_j = ∫ phi_j eps dxi (exact
+// on the 5 Gauss points: degree <= 6). The axial energy is
+//   1/2 EA l [(1 - gamma) sum_j alpha_j^2 + gamma ∫ eps^2 dxi],
+// the pointwise part (weight gamma, on the quadrature points of the rule)
+// stabilizing the axial zero-energy mode that the projection alone leaves.
+struct AxialProjection {
+  int n = 0;                  // basis functions; 0: no projection (Full, Reduced)
+  double gamma = 1.0;         // weight of the pointwise axial energy
+  double alpha[kAssumedTerms] = {}, alphaDot[kAssumedTerms] = {};
+  Vec8 grad[kAssumedTerms], gradDot[kAssumedTerms];   // d alpha_j / de and d alphadot_j / de (= H_j edot)
+  // Projected strain and strain rate at xi.
+  double strain(double xi) const
+  {
+    double v = 0;
+    for (int j = 0; j < n; ++j) v += alpha[j] * legendre01(j, xi);
+    return v;
+  }
+  double rate(double xi) const
+  {
+    double v = 0;
+    for (int j = 0; j < n; ++j) v += alphaDot[j] * legendre01(j, xi);
+    return v;
+  }
+};
+
+// The projection of eps (and, with edot, of its rate) for the section's axial treatment.
+AxialProjection projectAxialStrain(const Section &sec, double l, const Vec8 &e, const Vec8 *edot)
+{
+  AxialProjection a;
+  if (sec.axialIntegration != AxialIntegration::Assumed) return a;
+  a.gamma = assumedPointwiseWeight(sec, l);
+  // Stocky beams (EA L^2/EI <= kAssumedStabilization): the full element, bit for bit.
+  if (a.gamma >= 1.0) return a;
+  a.n = kAssumedTerms;
+  static const GaussRule5 rule;
+  const double *xi = rule.xi, *w = rule.w;
+  for (int j = 0; j < a.n; ++j) a.grad[j].setZero(), a.gradDot[j].setZero();
+  for (int p = 0; p < kGaussPoints; ++p) {
+    const Eigen::Vector4d s1 = shapeValues(xi[p], l, 1);
+    const Vec2 r1 = slopeAt(s1, e);
+    const double eps = 0.5 * (r1.squaredNorm() - 1.0);
+    const Vec8 dEps = expand(s1, r1);
+    Vec2 r1d = Vec2::Zero();
+    if (edot) r1d = slopeAt(s1, *edot);
+    for (int j = 0; j < a.n; ++j) {
+      const double wp = w[p] * legendre01(j, xi[p]);
+      a.alpha[j] += wp * eps;
+      a.grad[j] += wp * dEps;
+      if (edot) {
+        a.alphaDot[j] += wp * r1.dot(r1d);
+        a.gradDot[j] += wp * expand(s1, r1d);
+      }
+    }
+  }
+  return a;
+}
+
 } // namespace
+
+double assumedPointwiseWeight(const Section &sec, double l)
+{
+  if (sec.axialIntegration != AxialIntegration::Assumed) return 1.0;
+  const double L = sec.length > 0 ? sec.length : l;
+  return std::min(1.0, kAssumedStabilization * sec.EI / (sec.EA * L * L));
+}
 
 Eigen::Vector4d shapeValues(double xi, double l, int derivative)
 {
@@ -167,18 +250,22 @@ double curvature(const Vec8 &e, double xi, double l)
 double strainEnergy(const Section &sec, double l, const Vec8 &e)
 {
   const QuadRule &g = quadRule(sec.axialIntegration);
+  const AxialProjection proj = projectAxialStrain(sec, l, e, nullptr);
   double U = 0;
   for (int p = 0; p < g.size; ++p) {
     const QuadPoint &q = g.points[p];
     const double eps = axialStrain(e, q.xi, l), K = curvature(e, q.xi, l);
-    U += q.w * (q.axial * sec.EA * eps * eps + q.bending * sec.EI * K * K);
+    U += q.w * (q.axial * proj.gamma * sec.EA * eps * eps + q.bending * sec.EI * K * K);
   }
+  for (int j = 0; j < proj.n; ++j) U += (1.0 - proj.gamma) * sec.EA * proj.alpha[j] * proj.alpha[j];
   return 0.5 * l * U;
 }
 
 void internalForce(const Section &sec, double l, const Vec8 &e, Vec8 &f, Mat8 *Kt)
 {
   const QuadRule &g = quadRule(sec.axialIntegration);
+  const AxialProjection proj = projectAxialStrain(sec, l, e, nullptr);
+  const double EAproj = (1.0 - proj.gamma) * sec.EA; // EA of the projected strain (0 unless Assumed)
   Vec8 fl = Vec8::Zero(); // local accumulator: f may alias e
   // With a = EA eps - 2 EI K^2 / J2 and b = EI K / J2 (dK = (dc - 2 K dEps) / J2),
   //   f  = sum wx (a dEps + b dc),
@@ -193,7 +280,7 @@ void internalForce(const Section &sec, double l, const Vec8 &e, Vec8 &f, Mat8 *K
   }
   for (int p = 0; p < g.size; ++p) {
     const QuadPoint &q = g.points[p];
-    const double EA = q.axial * sec.EA, EI = q.bending * sec.EI; // this point's terms
+    const double EA = q.axial * proj.gamma * sec.EA, EI = q.bending * sec.EI; // this point's terms
     const Eigen::Vector4d s1 = shapeValues(q.xi, l, 1), s2 = shapeValues(q.xi, l, 2);
     Vec2 r1 = Vec2::Zero(), r2 = Vec2::Zero();
     for (int k = 0; k < 4; ++k) {
@@ -204,7 +291,9 @@ void internalForce(const Section &sec, double l, const Vec8 &e, Vec8 &f, Mat8 *K
     const double J2 = r1.squaredNorm(), iJ2 = 1.0 / J2;
     const double eps = 0.5 * (J2 - 1.0);
     const double K = cross(r1, r2) * iJ2;
-    const double a = EA * eps - 2.0 * EI * K * K * iJ2, b = EI * K * iJ2;
+    // Axial force: pointwise strain, plus the projected strain (Assumed; on the 5 points of its projection).
+    const double N = EA * eps + (proj.n ? EAproj * proj.strain(q.xi) : 0.0);
+    const double a = N - 2.0 * EI * K * K * iJ2, b = EI * K * iJ2;
     // dEps = s1 ⊗ r1, dc = s1 ⊗ W r2 - s2 ⊗ W r1.
     const Vec2 v1 = wx * (a * r1 + b * rotCW(r2)), v2 = (wx * b) * rotCW(r1);
     for (int k = 0; k < 4; ++k) fl.segment<2>(2 * k) += s1[k] * v1 - s2[k] * v2;
@@ -220,13 +309,17 @@ void internalForce(const Section &sec, double l, const Vec8 &e, Vec8 &f, Mat8 *K
     Q.noalias() += (wx * b) * (s1 * s2.transpose() - s2 * s1.transpose());
   }
   f = fl;
-  if (Kt) addKronecker(P, Q, *Kt);
+  if (!Kt) return;
+  addKronecker(P, Q, *Kt);
+  for (int j = 0; j < proj.n; ++j) Kt->noalias() += (EAproj * l) * proj.grad[j] * proj.grad[j].transpose();
 }
 
 double dampingForce(const Section &sec, double l, const Vec8 &e, const Vec8 &edot, Vec8 &fd, Mat8 *Kq, Mat8 *Dv)
 {
   // The axial strain rate on the points of the axial strain, so that D stays etaA K_axial.
   const QuadRule &g = quadRule(sec.axialIntegration);
+  const AxialProjection proj = projectAxialStrain(sec, l, e, &edot);
+  const double cproj = (1.0 - proj.gamma) * sec.EA * sec.etaA * l; // projected strain rate (Assumed)
   Vec8 fl = Vec8::Zero(); // local accumulator: fd may alias e or edot
   double power = 0;
   // With g_e = deps/de, g_K = dK/de and their Hessians H_e = (s1 s1^T) ⊗ I,
@@ -249,7 +342,7 @@ double dampingForce(const Section &sec, double l, const Vec8 &e, const Vec8 &edo
       r2d += s2[k] * edot.segment<2>(2 * k);
     }
     const double wx = q.w * l;
-    const double ca = wx * sec.EA * sec.etaA * q.axial, cb = wx * sec.EI * sec.etaB * q.bending;
+    const double ca = wx * proj.gamma * sec.EA * sec.etaA * q.axial, cb = wx * sec.EI * sec.etaB * q.bending;
     const double iJ2 = 1.0 / r1.squaredNorm();
     const double K = cross(r1, r2) * iJ2;
     const double epsdot = r1.dot(r1d);
@@ -267,8 +360,17 @@ double dampingForce(const Section &sec, double l, const Vec8 &e, const Vec8 &edo
     const double bd = cb * Kdot * iJ2;
     Kq->noalias() += ca * gE * hE.transpose() + cb * gK * hK.transpose() -
                      (2.0 * bd) * (gE * gK.transpose() + gK * gE.transpose());
-    P.noalias() += (ca * epsdot - 2.0 * bd * K) * s1 * s1.transpose();
+    const double projRate = proj.n ? wx * (1.0 - proj.gamma) * sec.EA * sec.etaA * proj.rate(q.xi) : 0.0;
+    P.noalias() += (ca * epsdot + projRate - 2.0 * bd * K) * s1 * s1.transpose();
     Q.noalias() += bd * (s1 * s2.transpose() - s2 * s1.transpose());
+  }
+  // The projected axial strain rate: fd = c sum_j alphadot_j g_j, dfd/dedot = c sum_j g_j g_j^T,
+  // dfd/de = c sum_j (g_j h_j^T + alphadot_j H_j) (the H_j part is in P above).
+  for (int j = 0; j < proj.n; ++j) {
+    fl += (cproj * proj.alphaDot[j]) * proj.grad[j];
+    power += cproj * proj.alphaDot[j] * proj.alphaDot[j];
+    if (Dv) Dv->noalias() += cproj * proj.grad[j] * proj.grad[j].transpose();
+    if (Kq) Kq->noalias() += cproj * proj.grad[j] * proj.gradDot[j].transpose();
   }
   fd = fl;
   if (Kq) addKronecker(P, Q, *Kq);
