@@ -8,6 +8,7 @@
 //   ProgressLine       progress lines on the console
 #pragma once
 
+#include "boomdyn/assembler.hpp"
 #include "boomdyn/energy_balance.hpp"
 #include "boomdyn/frequency_tracker.hpp"
 #include "boomdyn/monitor.hpp"
@@ -25,13 +26,20 @@ class Simulation;
 
 class EnergyCheck : public Monitor {
 public:
-  explicit EnergyCheck(double tolerance) : balance_(tolerance) {}
+  // assembler: for the work of the damping forces over each step (models
+  // with physical damping only; Assembler::dampingWork).
+  EnergyCheck(double tolerance, Assembler &assembler);
   PetscErrorCode start(const RunState &s, bool) override;
   PetscErrorCode afterStep(const RunState &s, std::string *failure) override;
   const EnergyBalance &balance() const { return balance_; }
 
 private:
+  PetscErrorCode remember(const RunState &s);
+
   EnergyBalance balance_; // restarted runs check the balance from the restart on: not checkpointed
+  Assembler &assembler_;
+  bool damped_;
+  PetscHandle<Vec> qPrevious_, vPrevious_, dq_; // damped models: the state before the step, its increment
 };
 
 class ResultsOutput : public Monitor {
