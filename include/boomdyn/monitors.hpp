@@ -109,7 +109,7 @@ private:
   Simulation &sim_;
   ResultsWriter &writer_;
   std::unique_ptr<FrequencyTracker> tracker_;
-  int damped_ = -1; // the model has damping (D != 0): 1, 0, -1 not yet known
+  int damped_ = -1; // the model has physical damping (Model::hasPhysicalDamping): 1, 0, -1 not yet known
   double interval_, next_ = 0;
   std::vector<double> shapeTimes_;
 };

@@ -95,9 +95,10 @@ PetscErrorCode Simulation::modalAnalysis(double t, Vec q, Vec lambda)
   PetscCall(SlepcInitialize(nullptr, nullptr, nullptr, nullptr));
   ModalResult modes;
   PetscCall(solveModes(assembler_, t, q, lambda, scene_.modal.count, &modes));
-  // A damped model also gets its damped modes (SLEPc PEP, docs/model.md §5).
-  bool damped;
-  PetscCall(hasDamping(assembler_, t, q, lambda, &damped));
+  // A model with physical damping (Kelvin-Voigt sections, dampers; not
+  // friction's velocity terms) also gets its damped modes (SLEPc PEP,
+  // docs/model.md §5).
+  const bool damped = model_.hasPhysicalDamping();
   if (damped) {
     DampedModalResult dm;
     PetscCall(solveDampedModes(assembler_, t, q, lambda, scene_.modal.count, &dm));
