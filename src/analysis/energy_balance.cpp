@@ -42,7 +42,7 @@ std::string EnergyBalance::update(double t, double h, const EnergyParts &e, doub
   roundoff_ = std::max(roundoff_, e.roundoff);
   const double floor = 1e-9 * (std::abs(total) + std::abs(e0_)) + 10.0 * roundoff_ + quadrature_;
   if (tolerance_ <= 0 || excess_ <= tolerance_ * involved() + floor) return {};
-  char text[512];
+  char text[768];
   std::snprintf(text, sizeof text,
                 "energy balance violated at t = %g s: the total energy grew by %.4g J more than the work of loads and "
                 "drives (%.4g J) less the damping work (%.4g J), %.3g times the energy the motion involves (%.4g J; "
