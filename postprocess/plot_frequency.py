@@ -2,7 +2,10 @@
 """Frequency along a run (paper Fig. 7): the tracked first bending frequency
 from the eigen-analysis (/tracking), the dominant frequency of the tip
 vibration from zero crossings (independent of the eigen-analysis), and the
-paper's values (27.0 Hz retracted, 10.2 Hz fully extended).
+paper's values (27.0 Hz retracted, 10.2 Hz fully extended). Damped models
+(the damped eigen-analysis wrote /tracking/damping_ratio) also get the
+tracked mode's damped frequency and, on a second axis beside the
+frequency, its damping ratio in percent.
 
   /usr/bin/python3 postprocess/plot_frequency.py RUN.h5 [-o OUT.png] [--paper]
 """
@@ -41,14 +44,31 @@ def frequency_data(f):
     return tt, fr, tc, fc, name
 
 
+def damping_data(f):
+    """(tracked damped Hz, damping ratio) of the tracked mode, or None for undamped runs."""
+    if "tracking/damping_ratio" not in f:
+        return None
+    return f["tracking/tracked_damped_hz"][()], f["tracking/damping_ratio"][()]
+
+
 def make_figure(run, paper=False):
     """The Fig. 7 figure of results file `run`: (matplotlib Figure, tracking times, tracked Hz)."""
     with boomdyn_h5.open_run(run) as f:
         scene = boomdyn_h5.scene_name(f)
         tt, fr, tc, fc, signal = frequency_data(f)
+        damped = damping_data(f)
     fig, ax = plt.subplots(figsize=(8, 4.5))
     ax.plot(tt, fr, "-", lw=2, label="first bending mode (eigen-analysis, tracked by MAC)")
     ax.plot(tc, fc, ".", ms=3, alpha=0.6, label="zero crossings of the %s" % signal)
+    lines = []
+    if damped is not None:
+        fd, zeta = damped
+        ax.plot(tt, fd, "--", lw=1, color="C0", label="its damped frequency (damped eigen-analysis)")
+        right = ax.twinx()
+        lines = right.plot(tt, 100.0 * zeta, "-", lw=1.5, color="C3", label="its damping ratio (right axis)")
+        right.set_ylabel("damping ratio [%]", color="C3")
+        right.tick_params(axis="y", colors="C3")
+        right.set_ylim(bottom=0.0)
     if paper:
         t0, t1, f0 = PAPER["retracted"]
         ax.plot([t0, t1], [f0, f0], "k--", lw=1, label="paper: 27.0 Hz retracted, 10.2 Hz extended")
@@ -57,7 +77,8 @@ def make_figure(run, paper=False):
     ax.set_ylabel("frequency [Hz]")
     ax.set_title("%s: first frequency along the run" % scene)
     ax.grid(True, alpha=0.4)
-    ax.legend(fontsize=8)
+    handles, labels = ax.get_legend_handles_labels()
+    ax.legend(handles + lines, labels + [ln.get_label() for ln in lines], fontsize=8)
     fig.tight_layout()
     return fig, tt, fr
 
@@ -73,6 +94,11 @@ def main(argv=None):
     fig.savefig(out, dpi=120)
     print("wrote %s" % out)
     print("tracked: %.3f Hz at t = %.2f s, %.3f Hz at t = %.2f s" % (fr[0], tt[0], fr[-1], tt[-1]))
+    with boomdyn_h5.open_run(a.run) as f:
+        damped = damping_data(f)
+    if damped is not None:
+        print("damping ratio: %.3f %% at t = %.2f s, %.3f %% at t = %.2f s"
+              % (100 * damped[1][0], tt[0], 100 * damped[1][-1], tt[-1]))
 
 
 if __name__ == "__main__":

@@ -96,6 +96,7 @@ struct DynamicHistory {
   std::vector<std::vector<double>> multipliers; // unscaled, every row, per step (all ranks)
   std::vector<std::vector<double>> slacks;      // slack coordinate of every sliding joint, per step
   RunSummary summary;
+  RunOutcome outcome;             // with the energy balance of the EnergyCheck
   std::vector<double> finalState; // q and v of the last step, gathered on every rank
   NewtonStatistics newton;        // of the time steps' solver
   int patternVersion = 0;         // pattern rebuilds (sliding joints changing elements)
@@ -173,6 +174,7 @@ inline DynamicHistory runDynamic(const Scene &scene, MPI_Comm comm = PETSC_COMM_
   check(sim.run());
   if (events) h.events = events->events();
   h.summary = sim.summary();
+  h.outcome = sim.outcome();
   // Final q and v on every rank, for comparisons across rank counts.
   GeneralizedAlpha &integrator = *sim.integrator();
   for (Vec v : {integrator.positions(), integrator.velocities()}) {

@@ -41,6 +41,10 @@ public:
   // Energy and max |C| over all constraint rows at the state given by x
   // through the affine map.
   PetscErrorCode diagnostics(const AssemblyContext &ctx, Vec x, EnergyParts *energy, PetscReal *maxViolation);
+  // Sum over all items of dq . Q_d(q, v), the work of the damping forces at
+  // the state (q, v) along the increment dq (all in x's layout; collective).
+  // Leaves the offsets set: the solvers set their own before every assembly.
+  PetscErrorCode dampingWork(Vec q, Vec v, Vec dq, PetscReal *work);
   // Mean diagonal of mass and stiffness over position coordinates at q = x.
   PetscErrorCode characteristicScales(Vec x, PetscReal *mass, PetscReal *stiffness);
 

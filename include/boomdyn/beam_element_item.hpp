@@ -19,6 +19,8 @@ public:
   void evaluate(const AssemblyContext &ctx, const ItemValues &in, double *residual, double *J) const override;
   void energy(const AssemblyContext &ctx, const ItemValues &in, EnergyParts &e) const override;
   void scales(const ItemValues &in, double &massDiag, double &stiffDiag, int &count) const override;
+  bool physicalDamping() const override;
+  double dampingWork(const ItemValues &in, const double *dq) const override;
 
 private:
   // Kelvin-Voigt damping force into the residual, D (times cV) and dfd/dq (times cQ) into J.

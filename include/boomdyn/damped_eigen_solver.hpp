@@ -46,9 +46,6 @@ struct DampedModalOptions {
 // D entry: as in the symmetric pencil they are algebraic (infinite modes).
 PetscErrorCode assembleDamping(Assembler &assembler, double t, Vec q, Vec lambda, Mat D);
 
-// True if D at (t, q, lambda) has a nonzero entry (collective).
-PetscErrorCode hasDamping(Assembler &assembler, double t, Vec q, Vec lambda, bool *damped);
-
 // The `count` lowest damped modes (by |lambda|, the undamped-equivalent
 // frequency; for light damping the order of omega_d too) of the linearization
 // at (t, q, lambda): one of each conjugate pair; infinite, non-finite and

@@ -60,6 +60,15 @@ public:
   const Body *findBody(const std::string &name) const;
   const std::vector<std::unique_ptr<WorkItem>> &items() const { return items_; }
   const std::vector<const ConstraintItem *> &constraints() const { return constraints_; }
+  // Some item damps the motion physically (WorkItem::physicalDamping): the
+  // eigen-analysis takes the damped (PEP) path and the energy balance counts
+  // the damping work.
+  bool hasPhysicalDamping() const
+  {
+    for (const auto &item : items_)
+      if (item->physicalDamping()) return true;
+    return false;
+  }
   const std::vector<Sensor> &sensors() const { return sensors_; }
   const std::vector<FrameSensor> &frameSensors() const { return frameSensors_; }
   // Per-type outputs (rope tensions, ...), in the order the types added them.

@@ -41,9 +41,10 @@ struct RunOutcome {
   PetscInt steps = 0, rejected = 0, newtonIterations = 0;
   double maxViolation = 0, wallTime = 0;
   double endTime = 0; // time (statics: the scene's statics.time) of the final state
-  // Energy balance of a dynamic run (EnergyCheck): W_in, excess, involved [J].
+  // Energy balance of a dynamic run (EnergyCheck): W_in, excess (E - E0 - W_in + W_diss), involved [J].
   bool hasEnergyBalance = false;
   double inputWork = 0, energyExcess = 0, energyInvolved = 0;
+  double dissipatedWork = 0; // W_diss of the damping forces [J]
   // A run that -ts_max_steps ended before t_end did what was asked: it
   // counts as completed (exit 0), and /summary/status says why it stopped.
   static constexpr const char *kStepLimit = "completed: stopped by -ts_max_steps before t_end";

@@ -9,6 +9,7 @@
 //   ProgressLine       progress lines on the console
 #pragma once
 
+#include "boomdyn/assembler.hpp"
 #include "boomdyn/energy_balance.hpp"
 #include "boomdyn/frequency_tracker.hpp"
 #include "boomdyn/monitor.hpp"
@@ -26,13 +27,20 @@ class Simulation;
 
 class EnergyCheck : public Monitor {
 public:
-  explicit EnergyCheck(double tolerance) : balance_(tolerance) {}
+  // assembler: for the work of the damping forces over each step (models
+  // with physical damping only; Assembler::dampingWork).
+  EnergyCheck(double tolerance, Assembler &assembler);
   PetscErrorCode start(const RunState &s, bool) override;
   PetscErrorCode afterStep(const RunState &s, std::string *failure) override;
   const EnergyBalance &balance() const { return balance_; }
 
 private:
+  PetscErrorCode remember(const RunState &s);
+
   EnergyBalance balance_; // restarted runs check the balance from the restart on: not checkpointed
+  Assembler &assembler_;
+  bool damped_;
+  PetscHandle<Vec> qPrevious_, vPrevious_, dq_; // damped models: the state before the step, its increment
 };
 
 class ResultsOutput : public Monitor {
@@ -125,7 +133,7 @@ private:
   Simulation &sim_;
   ResultsWriter &writer_;
   std::unique_ptr<FrequencyTracker> tracker_;
-  int damped_ = -1; // the model has damping (D != 0): 1, 0, -1 not yet known
+  int damped_ = -1; // the model has physical damping (Model::hasPhysicalDamping): 1, 0, -1 not yet known
   double interval_, next_ = 0;
   std::vector<double> shapeTimes_;
 };

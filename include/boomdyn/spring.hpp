@@ -27,6 +27,7 @@ public:
   void coordinates(std::vector<PetscInt> &dofs) const override;
   void evaluate(const AssemblyContext &ctx, const ItemValues &in, double *residual, double *J) const override;
   void energy(const AssemblyContext &ctx, const ItemValues &in, EnergyParts &e) const override;
+  bool physicalDamping() const override { return c_ > 0; } // a damper: the damped eigen-analysis
 
 private:
   std::string name_;

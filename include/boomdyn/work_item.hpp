@@ -76,6 +76,17 @@ public:
   // Diagnostics at a state.
   virtual void energy(const AssemblyContext &, const ItemValues &, EnergyParts &) const {}
   virtual double constraintViolation(const AssemblyContext &, const ItemValues &) const { return 0; }
+  // Physical damping: true when the item adds a dissipative force that
+  // depends on the velocities as material behaviour (Kelvin-Voigt sections,
+  // dampers), which selects the damped (PEP) eigen-analysis. Friction's
+  // velocity terms do not count: they are a slip law, not a damping of the
+  // vibration (modal_analysis.hpp).
+  virtual bool physicalDamping() const { return false; }
+  // dq . Q_d(q, v): the work of the item's damping forces at the state given
+  // (q, v of the coordinates) along an increment dq of its coordinates (J,
+  // > 0 when the force opposes dq). The energy balance integrates it over a
+  // step with the step's own increment (EnergyCheck).
+  virtual double dampingWork(const ItemValues &, const double * /*dq*/) const { return 0; }
   // Contribution to a characteristic mass / stiffness (diagonal sums) used to scale multipliers.
   virtual void scales(const ItemValues &, double &massDiag, double &stiffDiag, int &count) const
   {

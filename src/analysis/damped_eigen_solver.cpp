@@ -52,18 +52,6 @@ PetscErrorCode assembleDamping(Assembler &assembler, double t, Vec q, Vec lambda
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode hasDamping(Assembler &assembler, double t, Vec q, Vec lambda, bool *damped)
-{
-  PetscHandle<Mat> D;
-  PetscReal norm;
-  PetscFunctionBeginUser;
-  PetscCall(assembler.createMatrix(D.address()));
-  PetscCall(assembleDamping(assembler, t, q, lambda, D));
-  PetscCall(MatNorm(D, NORM_FROBENIUS, &norm));
-  *damped = norm > 0;
-  PetscFunctionReturn(0);
-}
-
 namespace {
 
 struct Candidate {

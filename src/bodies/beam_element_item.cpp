@@ -80,6 +80,18 @@ void BeamElementItem::energy(const AssemblyContext &ctx, const ItemValues &in, E
   e.potential -= ctx.loadFactor * gravity_.dot(q);
 }
 
+bool BeamElementItem::physicalDamping() const { return beam_->section().damped(); }
+
+double BeamElementItem::dampingWork(const ItemValues &in, const double *dq) const
+{
+  const ancf::Section &sec = beam_->section();
+  if (!sec.damped()) return 0.0;
+  const Eigen::Map<const ancf::Vec8> q(in.q), v(in.v), d(dq);
+  ancf::Vec8 fd;
+  (void)ancf::dampingForce(sec, beam_->elementLength(), q, v, fd, nullptr, nullptr);
+  return d.dot(fd);
+}
+
 void BeamElementItem::scales(const ItemValues &in, double &massDiag, double &stiffDiag, int &count) const
 {
   const Eigen::Map<const ancf::Vec8> q(in.q);

@@ -258,6 +258,25 @@ PetscErrorCode Assembler::diagnostics(const AssemblyContext &ctx, Vec x, EnergyP
   PetscFunctionReturn(0);
 }
 
+PetscErrorCode Assembler::dampingWork(Vec q, Vec v, Vec dq, PetscReal *work)
+{
+  PetscFunctionBeginUser;
+  // q from x itself, v and the increment through the offsets: the items
+  // read the increment where the accelerations would be.
+  AssemblyContext ctx;
+  ctx.kin = {1.0, 0.0, 0.0};
+  PetscCall(setOffsets(nullptr, v, dq));
+  PetscCall(scatterAndMap(ctx, q));
+  double local = 0;
+  ItemValues vals;
+  for (std::size_t k = 0; k < items_.size(); ++k) {
+    gather(k, vals);
+    local += items_[k]->dampingWork(vals, vals.a);
+  }
+  PetscCallMPI(MPI_Allreduce(&local, work, 1, MPI_DOUBLE, MPI_SUM, comm_));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode Assembler::characteristicScales(Vec x, PetscReal *mass, PetscReal *stiffness)
 {
   PetscFunctionBeginUser;

@@ -36,11 +36,9 @@ PetscErrorCode FrequencyTracking::track(const RunState &s, double h)
   if (s.t < next_ - 1e-9 * h) PetscFunctionReturn(0);
   TrackedModes modes;
   PetscCall(tracker_->analyze(s.t, s.q, s.lambda, &modes));
-  if (damped_ < 0) {
-    bool damped;
-    PetscCall(hasDamping(sim_.assembler(), s.t, s.q, s.lambda, &damped));
-    damped_ = damped;
-  }
+  // Physical damping (Kelvin-Voigt sections, dampers) takes the damped
+  // path; friction's velocity terms alone do not (WorkItem::physicalDamping).
+  if (damped_ < 0) damped_ = sim_.model().hasPhysicalDamping();
   if (damped_) PetscCall(trackDamped(s, &modes));
   bool shape = false;
   // shapeTimes_ is sorted latest first: the due times come off its back.

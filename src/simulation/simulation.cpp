@@ -32,7 +32,7 @@ PetscErrorCode Simulation::setUp()
     integrator_ = std::make_unique<GeneralizedAlpha>(assembler_, scene_.dynamic.rho_inf);
     PetscCall(integrator_->setUp(scene_.dynamic.max_newton));
     integrator_->setErrorTolerance(options_.adaptiveTolerance);
-    auto energy = std::make_unique<EnergyCheck>(options_.energyTolerance);
+    auto energy = std::make_unique<EnergyCheck>(options_.energyTolerance, assembler_);
     energy_ = energy.get();
     monitors_.push_back(std::move(energy));
     if (scene_.dynamic.startStatic) { // initial: static
@@ -82,6 +82,7 @@ PetscErrorCode Simulation::finish(const RunState &state)
     outcome_.inputWork = energy_->balance().inputWork();
     outcome_.energyExcess = energy_->balance().excess();
     outcome_.energyInvolved = energy_->balance().involved();
+    outcome_.dissipatedWork = energy_->balance().dissipatedWork();
   }
   for (auto &m : monitors_) PetscCall(m->finish(state, outcome_));
   PetscFunctionReturn(0);
@@ -94,9 +95,10 @@ PetscErrorCode Simulation::modalAnalysis(double t, Vec q, Vec lambda)
   PetscCall(SlepcInitialize(nullptr, nullptr, nullptr, nullptr));
   ModalResult modes;
   PetscCall(solveModes(assembler_, t, q, lambda, scene_.modal.count, &modes));
-  // A damped model also gets its damped modes (SLEPc PEP, docs/model.md §5).
-  bool damped;
-  PetscCall(hasDamping(assembler_, t, q, lambda, &damped));
+  // A model with physical damping (Kelvin-Voigt sections, dampers; not
+  // friction's velocity terms) also gets its damped modes (SLEPc PEP,
+  // docs/model.md §5).
+  const bool damped = model_.hasPhysicalDamping();
   if (damped) {
     DampedModalResult dm;
     PetscCall(solveDampedModes(assembler_, t, q, lambda, scene_.modal.count, &dm));

@@ -179,3 +179,32 @@ TEST(DampedModes, TipDamperMatchesDenseReference)
     EXPECT_LT(eZ, 1e-8) << "mode " << k + 1;
   }
 }
+
+TEST(DampedModes, OnlyPhysicalDampingTakesTheDampedPath)
+{
+  // Viscous LuGre friction (sigma1, sigma2) at the pads of two nested booms
+  // is a slip law, not a damping of the vibration: the model keeps the
+  // symmetric eigen-analysis. A Kelvin-Voigt section or a spring damper
+  // selects the damped (PEP) one (Model::hasPhysicalDamping, used by the
+  // modal analysis and the frequency tracking instead of a norm of D).
+  auto booms = [](const std::string &damping) {
+    return "name: nested\nanalysis: modal\ngravity: [0, -9.81]\nbodies:\n"
+           "  - {name: boom1, length: 2.0, elements: 4, section: {E: 2.1e11, A: 6.944e-3, I: 3.6753355e-5, rho: 7850" +
+           damping +
+           "}}\n"
+           "  - {name: boom2, length: 2.0, elements: 4, origin: [0.5, 0], section: {E: 2.1e11, A: 5.264e-3, I: "
+           "2.1380634e-5, rho: 7850}}\n"
+           "constraints:\n  - {type: clamp, name: base, body: boom1, at: start}\n"
+           "  - {type: sliding_joint, name: j1, body: boom1, at: end, track: boom2, friction: {mu_s: 0.15, mu_c: 0.1, "
+           "v_s: 1.0e-3, sigma0: 1.0e5, sigma1: 300, sigma2: 50}}\n"
+           "  - {type: sliding_joint, name: j2, body: boom2, at: start, track: boom1, friction: {mu_s: 0.15, mu_c: "
+           "0.1, v_s: 1.0e-3, sigma0: 1.0e5, sigma1: 300, sigma2: 50}}\nmodal: {count: 3}\n";
+  };
+  Linearization friction(booms(""));
+  EXPECT_FALSE(friction.model.hasPhysicalDamping());
+  EXPECT_TRUE(Linearization(booms(", eta_bending: 1.0e-4")).model.hasPhysicalDamping());
+  const std::string spring = "springs:\n  - {name: s, body: boom, at: 2.0, point: [2.0, -1.0], stiffness: 1e5";
+  EXPECT_TRUE(Linearization(cantilever(4, "", spring + ", damping: 3000}\n")).model.hasPhysicalDamping());
+  EXPECT_FALSE(Linearization(cantilever(4, "", spring + "}\n")).model.hasPhysicalDamping());
+  EXPECT_FALSE(Linearization(cantilever(4, "")).model.hasPhysicalDamping());
+}
