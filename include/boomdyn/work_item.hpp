@@ -36,6 +36,10 @@ struct AssemblyContext {
   double loadFactor = 1;     // multiplies external loads and gravity (static load stepping)
   // Constraint rows at acceleration level: sigma (C_q a + gamma) instead of sigma C.
   bool accelerationLevel = false;
+  // With accelerationLevel: constraint rows at velocity level,
+  // sigma (C_q a + C_q v + C_t), a being a velocity change (the impulsive
+  // velocity projection at a drive's kink, docs/model.md §4.8).
+  bool velocityLevel = false;
   // Emit zeros in every constraint block (the mass pencil B of the eigenproblem).
   bool constraintBlocks = true;
 };
