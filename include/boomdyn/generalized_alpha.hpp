@@ -114,6 +114,7 @@ private:
   double t_ = 0, massScale_ = 1, errorTolerance_ = 0;
   bool hasDrives_ = false; // some constraint depends on time (its power needs the multipliers)
   bool kinkRestart_ = true;
+  double impulseWork_ = 0; // kinetic energy added by the velocity projections so far [J]
   std::vector<double> breakpoints_; // sorted velocity kinks of all drives
   PetscHandle<Vec> q_, v_, qdd_, a_, lambda_;       // state at t_
   PetscHandle<Vec> x_, qp_, vc_, ac_, zero_;        // work vectors of a step

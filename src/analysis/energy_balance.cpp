@@ -18,8 +18,13 @@ std::string EnergyBalance::update(double t, double h, const EnergyParts &e)
     e0_ = total;
     previousPower_ = e.inputPower;
     previousDissipation_ = e.dissipation;
+    previousImpulseWork_ = e.impulseWork;
     return {};
   }
+  // The drives' impulses at velocity kinks (kink restart): their work, exactly.
+  work_ += e.impulseWork - previousImpulseWork_;
+  exchanged_ += std::abs(e.impulseWork - previousImpulseWork_);
+  previousImpulseWork_ = e.impulseWork;
   // Trapezoidal rule over the step: second order, like the integrator.
   work_ += 0.5 * (previousPower_ + e.inputPower) * h;
   // What the trapezoidal rule may miss over the step (its distance from

@@ -100,6 +100,7 @@ PetscErrorCode GeneralizedAlpha::initialize(double t0, Vec q0, Vec v0)
 {
   PetscFunctionBeginUser;
   t_ = t0;
+  impulseWork_ = 0;
   PetscCall(VecCopy(q0, q_));
   PetscCall(VecCopy(v0, v_));
   PetscCall(VecSet(impulse_, 0.0));
@@ -178,9 +179,14 @@ PetscErrorCode GeneralizedAlpha::projectVelocities()
     throw std::runtime_error(std::string("the velocity projection at the drive kink t = ") + timeText(t_) +
                              " s did not converge (" + SNESConvergedReasons[reason] + ")");
   PetscCall(assembler_.copyMultipliers(x_, impulse_, massScale_));
-  // v += dv on the coordinates (the multiplier entries of x are P_hat).
+  // v += dv on the coordinates (the multiplier entries of x are P_hat); the
+  // kinetic energy it adds is the impulses' work (q does not move).
+  EnergyParts before, after;
+  PetscCall(diagnostics(&before, &violation));
   PetscCall(assembler_.copyMultipliers(zero_, x_, 0.0));
   PetscCall(VecAXPY(v_, 1.0, x_));
+  PetscCall(diagnostics(&after, &violation));
+  impulseWork_ += after.kinetic - before.kinetic;
   PetscFunctionReturn(0);
 }
 
@@ -311,6 +317,7 @@ PetscErrorCode GeneralizedAlpha::save(StateWriter &out) const
   PetscCall(out.addVector("a", a_));
   PetscCall(out.addVector("lambda", lambda_));
   out.addScalar("t", t_);
+  out.addScalar("impulse_work", impulseWork_);
   out.addArray("slider_locations", sliders_.locations());
   PetscFunctionReturn(0);
 }
@@ -324,6 +331,7 @@ PetscErrorCode GeneralizedAlpha::restore(const StateReader &in)
   PetscCall(in.getVector("a", a_));
   PetscCall(in.getVector("lambda", lambda_));
   t_ = in.scalar("t");
+  impulseWork_ = in.hasScalar("impulse_work") ? in.scalar("impulse_work") : 0.0;
   // The joints' elements as they were, not as a fresh search would choose
   // them within the relocation band: restarts continue bitwise.
   PetscCall(sliders_.setLocations(in.array("slider_locations")));
@@ -348,6 +356,7 @@ PetscErrorCode GeneralizedAlpha::diagnostics(EnergyParts *energy, PetscReal *vio
   PetscCall(VecCopy(q_, qp_));
   PetscCall(assembler_.copyMultipliers(lambda_, qp_, 1.0));
   PetscCall(assembler_.diagnostics(ctx, qp_, energy, violation));
+  energy->impulseWork = impulseWork_;
   PetscFunctionReturn(0);
 }
 
