@@ -159,10 +159,13 @@ private:
   DynamicHistory &h_;
 };
 
-inline DynamicHistory runDynamic(const Scene &scene, MPI_Comm comm = PETSC_COMM_WORLD, double errorTolerance = 0)
+inline DynamicHistory runDynamic(const Scene &scene, MPI_Comm comm = PETSC_COMM_WORLD, double errorTolerance = 0,
+                                 bool kinkRestart = true)
 {
   DynamicHistory h;
-  Simulation sim(scene, comm, testOptions(errorTolerance));
+  SimulationOptions options = testOptions(errorTolerance);
+  options.kinkRestart = kinkRestart; // -boom_kink_restart
+  Simulation sim(scene, comm, options);
   check(sim.setUp());
   sim.addMonitor(std::make_unique<HistoryRecorder>(sim, h));
   const TypeEventsOutput *events = nullptr;
@@ -188,10 +191,11 @@ inline DynamicHistory runDynamic(const Scene &scene, MPI_Comm comm = PETSC_COMM_
 
 // runDynamic with one boomdyn option set (e.g. "-boom_schur_dd", "1") for
 // this run only.
-inline DynamicHistory runDynamicWithOption(const Scene &scene, MPI_Comm comm, const char *name, const char *value)
+inline DynamicHistory runDynamicWithOption(const Scene &scene, MPI_Comm comm, const char *name, const char *value,
+                                           bool kinkRestart = true)
 {
   PetscOptionsSetValue(nullptr, name, value);
-  DynamicHistory h = runDynamic(scene, comm);
+  DynamicHistory h = runDynamic(scene, comm, 0, kinkRestart);
   PetscOptionsClearValue(nullptr, name);
   return h;
 }

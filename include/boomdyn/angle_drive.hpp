@@ -17,6 +17,7 @@ public:
   void coordinates(std::vector<PetscInt> &dofs) const override;
   void evaluate(double t, const double *q, const double *v, const double *w, ConstraintEval &out) const override;
   const char *rowUnit(int) const override { return "rad"; }
+  void velocityBreakpoints(std::vector<double> &out) const override { theta_.velocityBreakpoints(out); }
 
 private:
   std::string name_;

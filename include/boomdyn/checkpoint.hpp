@@ -49,7 +49,7 @@ public:
   double scalar(const std::string &name) const override;
   const std::vector<double> &array(const std::string &name) const override;
   const std::string &sceneText() const { return sceneText_; }
-  bool hasScalar(const std::string &name) const { return scalars_.count(name) > 0; }
+  bool hasScalar(const std::string &name) const override { return scalars_.count(name) > 0; }
 
 private:
   std::string firstNonFinite(const std::vector<std::string> &scalarNames,

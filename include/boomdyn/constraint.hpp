@@ -14,6 +14,10 @@ struct ConstraintEval {
   Eigen::MatrixXd Cq;    // rows x coords
   Eigen::VectorXd gamma; // (C_q v)_q v + 2 C_qt v + C_tt  (so that d2C/dt2 = C_q a + gamma)
   Eigen::MatrixXd H;     // sum_i w_i d2C_i/dq2 (coords x coords)
+  // dC/dt at fixed q (right derivative at a drive's breakpoint), so that
+  // dC/dt = C_q v + Ct; filled with gamma when v != nullptr. Left empty
+  // by constraints that do not depend on t (read as zero).
+  Eigen::VectorXd Ct;
 };
 
 class Constraint {
@@ -27,6 +31,8 @@ public:
   // False when C does not depend on t explicitly (C_t = 0): such constraints
   // do no work, and the energy balance skips them.
   virtual bool dependsOnTime() const { return true; }
+  // Times at which dC/dt jumps (a drive's velocity kinks), appended to out.
+  virtual void velocityBreakpoints(std::vector<double> &out) const { (void)out; }
   // Unit of the rows, for messages ("m", "rad", ...).
   virtual const char *rowUnit(int row) const { (void)row; return "m"; }
 };

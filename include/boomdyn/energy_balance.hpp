@@ -52,6 +52,7 @@ private:
   double tolerance_;
   int steps_ = 0;
   double roundoff_ = 0, quadrature_ = 0;
+  double previousImpulseWork_ = 0; // cumulative impulse work at the last update
   double e0_ = 0, previousPower_ = 0, work_ = 0, exchanged_ = 0, activity_ = 0, excess_ = 0;
   double dissipated_ = 0, damped_ = 0;
 };

@@ -18,6 +18,7 @@
 #include "boomdyn/state_archive.hpp"
 
 #include <string>
+#include <vector>
 
 namespace boomdyn {
 
@@ -36,6 +37,9 @@ struct StepResult {
   // Newmark estimate h^2 |beta - 1/6| |a_{n+1} - a_n| (Zienkiewicz and Xie).
   double errorEstimate = 0;
   bool errorRejected = false; // converged, but errorEstimate > the error tolerance
+  // The step ended on a velocity breakpoint of a drive and the integrator
+  // restarted there (velocity projection + consistent accelerations).
+  bool restarted = false;
 };
 
 class GeneralizedAlpha {
@@ -57,6 +61,23 @@ public:
   PetscErrorCode restore(const StateReader &in);
   // Attempt one step of size h. On failure the state is left unchanged.
   PetscErrorCode step(double h, StepResult *result);
+  // Attempt the step that ends exactly on nextBreakpoint() and, when it
+  // converges, restart there (docs/model.md §4.8): project the velocities
+  // onto C_q v + C_t = 0 with the right-hand rates of the drives (an
+  // impulsive step M dv + C_q^T P + friction impulse = 0), then solve for
+  // consistent accelerations and multipliers and reset the auxiliary
+  // acceleration a to them. Without kink restarts it is step(h).
+  PetscErrorCode stepToBreakpoint(StepResult *result);
+  // The first velocity breakpoint of a drive after the current time
+  // (+infinity when none is left or kink restarts are off).
+  double nextBreakpoint() const;
+  // -boom_kink_restart (default on): land on the drives' velocity kinks
+  // and restart there. Set before initialize().
+  void setKinkRestart(bool on) { kinkRestart_ = on; }
+  bool kinkRestart() const { return kinkRestart_; }
+  // Impulse of the last velocity projection (N s or N m s) in the
+  // multiplier entries, SI units; zero before any.
+  Vec lastImpulse() const { return impulse_; }
 
   double time() const { return t_; }
   // State in the layout of x: coordinates in the first nq entries.
@@ -75,6 +96,12 @@ public:
   const AlphaParameters &parameters() const { return params_; }
 
 private:
+  // One step from t_ to tEnd = t_ + h (tEnd given exactly when landing on a breakpoint).
+  PetscErrorCode advance(double h, double tEnd, StepResult *result);
+  // The velocity projection at t_ (no-op when v_ is consistent).
+  PetscErrorCode projectVelocities();
+  // qdd_, a_ and lambda_ from the acceleration-level equations at (t_, q_, v_).
+  PetscErrorCode consistentAccelerations();
   template <class Op>
   PetscErrorCode forFirstOrder(Op op);
   template <class Op>
@@ -86,8 +113,12 @@ private:
   SliderTracker sliders_;
   double t_ = 0, massScale_ = 1, errorTolerance_ = 0;
   bool hasDrives_ = false; // some constraint depends on time (its power needs the multipliers)
+  bool kinkRestart_ = true;
+  double impulseWork_ = 0; // kinetic energy added by the velocity projections so far [J]
+  std::vector<double> breakpoints_; // sorted velocity kinks of all drives
   PetscHandle<Vec> q_, v_, qdd_, a_, lambda_;       // state at t_
   PetscHandle<Vec> x_, qp_, vc_, ac_, zero_;        // work vectors of a step
+  PetscHandle<Vec> shift_, impulse_;                // velocity projection
 };
 
 } // namespace boomdyn

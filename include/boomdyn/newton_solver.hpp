@@ -65,6 +65,9 @@ public:
   void invalidateJacobian() { jacobianValid_ = false; }
 
   AssemblyContext ctx; // set by the caller before solve()
+  // Subtracted from every residual when not null (set by the caller; the
+  // velocity projection removes the finite forces this way).
+  Vec residualShift = nullptr;
   SNES snes() const { return snes_; }
   Mat jacobian() const { return J_; }
   const JacobianReuse &reuse() const { return reuse_; }

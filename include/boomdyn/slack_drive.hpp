@@ -18,11 +18,15 @@ public:
   std::string name() const override { return name_; }
   int numRows() const override { return 1; }
   void coordinates(std::vector<PetscInt> &dofs) const override { dofs.assign(1, slack_); }
+  void velocityBreakpoints(std::vector<double> &out) const override { d_.velocityBreakpoints(out); }
   void evaluate(double t, const double *q, const double *v, const double *w, ConstraintEval &out) const override
   {
     out.C.setConstant(1, q[0] - s0_ - d_.value(t));
     out.Cq.setOnes(1, 1);
-    if (v) out.gamma.setConstant(1, -d_.accel(t));
+    if (v) {
+      out.gamma.setConstant(1, -d_.accel(t));
+      out.Ct.setConstant(1, -d_.rate(t));
+    }
     if (w) out.H.setZero(1, 1);
   }
 

@@ -28,6 +28,8 @@ public:
   virtual PetscErrorCode getVector(const std::string &name, Vec v) const = 0;
   // Throw std::runtime_error naming the source when the entry is missing.
   virtual double scalar(const std::string &name) const = 0;
+  // Whether a scalar is stored (entries newer than some checkpoints).
+  virtual bool hasScalar(const std::string &name) const = 0;
   virtual const std::vector<double> &array(const std::string &name) const = 0;
 };
 

@@ -37,6 +37,13 @@ public:
   // The end of a ramp, smooth step or accel-limited move (t0 for the others).
   double endTime() const { return t1_; }
 
+  // Times at which the rate jumps (ramp start and end, table knots where
+  // the slope changes, a sine's start with nonzero rate), appended to out.
+  // The time stepper lands a step on each and restarts there (velocity
+  // projection and consistent accelerations, docs/model.md §4.8). Smooth
+  // steps and accel-limited moves have a continuous rate: none.
+  void velocityBreakpoints(std::vector<double> &out) const;
+
   double value(double t) const;
   double rate(double t) const;  // df/dt
   double accel(double t) const; // d2f/dt2

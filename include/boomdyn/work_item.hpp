@@ -36,6 +36,10 @@ struct AssemblyContext {
   double loadFactor = 1;     // multiplies external loads and gravity (static load stepping)
   // Constraint rows at acceleration level: sigma (C_q a + gamma) instead of sigma C.
   bool accelerationLevel = false;
+  // With accelerationLevel: constraint rows at velocity level,
+  // sigma (C_q a + C_q v + C_t), a being a velocity change (the impulsive
+  // velocity projection at a drive's kink, docs/model.md §4.8).
+  bool velocityLevel = false;
   // Emit zeros in every constraint block (the mass pencil B of the eigenproblem).
   bool constraintBlocks = true;
 };
@@ -57,6 +61,10 @@ struct EnergyParts {
   // Power dissipated by material damping (W, >= 0): edot . fd of the
   // Kelvin-Voigt forces (docs/model.md §1.1).
   double dissipation = 0;
+  // Work of the drives' impulses at their velocity kinks since the start of
+  // the run (J, cumulative): the kinetic energy each velocity projection
+  // adds (docs/model.md §4.8). Set by the integrator, not by work items.
+  double impulseWork = 0;
   // Size of the round-off in these sums (J): the strain energy of a short
   // element comes from differences of nodal values of size |q| over its
   // length, so it carries an error that grows like |q|^2 / l^3 (bending).

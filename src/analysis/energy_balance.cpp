@@ -17,8 +17,13 @@ std::string EnergyBalance::update(double t, double h, const EnergyParts &e, doub
   if (steps_++ < 2) { // the start (h = 0) and the first step
     e0_ = total;
     previousPower_ = e.inputPower;
+    previousImpulseWork_ = e.impulseWork;
     return {};
   }
+  // The drives' impulses at velocity kinks (kink restart): their work, exactly.
+  work_ += e.impulseWork - previousImpulseWork_;
+  exchanged_ += std::abs(e.impulseWork - previousImpulseWork_);
+  previousImpulseWork_ = e.impulseWork;
   // Trapezoidal rule over the step: second order, like the integrator.
   work_ += 0.5 * (previousPower_ + e.inputPower) * h;
   // What the trapezoidal rule may miss over the step (its distance from

@@ -126,6 +126,10 @@ PetscErrorCode readRunOptions(PetscOptionItems *PetscOptionsObject, AppOptions *
   PetscCall(optionNumber(PetscOptionsObject, "-boom_adaptive_tol",
                          "Adaptive steps: largest local position error per step [m] (0: fixed steps)",
                          &o->adaptiveTolerance));
+  PetscCall(optionBool(PetscOptionsObject, "-boom_kink_restart",
+                       "Land a step on every velocity kink of a drive and restart there (velocity projection, "
+                       "consistent accelerations); 0: step through kinks (oscillating multipliers)",
+                       &o->kinkRestart));
   PetscCall(optionNumber(PetscOptionsObject, "-boom_checkpoint_interval",
                          "Simulated time between checkpoints (0: only when interrupted)", &o->checkpointInterval));
   o->checkpointPath = withoutExtension(o->outputPath, ".h5") + ".chk.h5";

@@ -98,6 +98,7 @@ PetscErrorCode runScene(const Scene &scene, const AppOptions &opts, int argc, ch
   options.energyTolerance = opts.energyTolerance;
   options.trackingFullSolve = opts.trackingFull;
   options.adaptiveTolerance = opts.adaptiveTolerance;
+  options.kinkRestart = opts.kinkRestart;
   options.restartPath = opts.restartPath;
   options.quiet = opts.quiet;
   // A scene that is no mechanism is reported by exception (ModelError).

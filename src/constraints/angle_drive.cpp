@@ -38,6 +38,7 @@ void AngleDrive::evaluate(double t, const double *q, const double *v, const doub
     }
     out.gamma.resize(1);
     out.gamma[0] = quad - 2.0 * thd * i.dot(r1dot) - thdd * i.dot(r1) - thd * thd * j.dot(r1);
+    out.Ct.setConstant(1, -thd * i.dot(r1)); // dC/dt at fixed q: (d/dt j) . r1
   }
   if (w) {
     out.H.setZero(n, n);

@@ -121,7 +121,11 @@ void LuGreFriction::evaluate(const AssemblyContext &ctx, const ItemValues &in, d
     for (int m = 0; m <= is; ++m) lambda.derivatives()[m] += k.cQ * fq[m] + k.cV * fv[m];
   } else
     lambda = variable(ctx.sigma * in.lambda[0], il, ctx.sigma);
-  const AD force = (f.sigma0 * z + f.sigma1 * zdot) * absolute(lambda) + f.sigma2 * vr;
+  // The impulsive step of a velocity projection (velocityLevel, lambda the
+  // normal impulse) is frictionless: friction acts through finite forces
+  // only (docs/model.md §4.8).
+  const AD force = ctx.velocityLevel ? constant(0.0)
+                                     : AD((f.sigma0 * z + f.sigma1 * zdot) * absolute(lambda) + f.sigma2 * vr);
 
   std::array<AD, kMaxUnknowns> r;
   for (int row = 0; row < n; ++row) r[row] = constant(0.0);

@@ -28,8 +28,16 @@ void ConstraintItem::evaluate(const AssemblyContext &ctx, const ItemValues &in, 
   const double sigma = ctx.sigma;
   Eigen::Map<Eigen::VectorXd> r(residual, n);
   r.head(nc) += sigma * ev.Cq.transpose() * lam;
-  if (ctx.accelerationLevel) r.tail(m) += sigma * (ev.Cq * Eigen::Map<const Eigen::VectorXd>(in.a, nc) + ev.gamma);
-  else r.tail(m) += sigma * ev.C;
+  if (ctx.accelerationLevel) {
+    const Eigen::Map<const Eigen::VectorXd> a(in.a, nc);
+    if (!ctx.velocityLevel) r.tail(m) += sigma * (ev.Cq * a + ev.gamma);
+    else { // velocity jump a: C_q (v + a) + C_t = 0
+      r.tail(m) += sigma * ev.Cq * (a + Eigen::Map<const Eigen::VectorXd>(in.v, nc));
+      if (ev.Ct.size() == m) r.tail(m) += sigma * ev.Ct;
+    }
+  } else {
+    r.tail(m) += sigma * ev.C;
+  }
   if (!J) return;
   Eigen::Map<RowMajor> Jm(J, n, n);
   if (needHessian) Jm.topLeftCorner(nc, nc) += ctx.kin.cQ * sigma * ev.H;

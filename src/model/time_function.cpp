@@ -243,6 +243,33 @@ double TimeFunction::value(double t) const
   return 0.0;
 }
 
+void TimeFunction::velocityBreakpoints(std::vector<double> &out) const
+{
+  switch (kind_) {
+  case Kind::Ramp:
+    if (v1_ != v0_) out.insert(out.end(), {t0_, t1_});
+    return;
+  case Kind::Table: {
+    // Slope before the first knot and after the last is zero.
+    double before = 0.0;
+    for (std::size_t k = 0; k < times_.size(); ++k) {
+      const double after =
+        k + 1 < times_.size() ? (values_[k + 1] - values_[k]) / (times_[k + 1] - times_[k]) : 0.0;
+      if (after != before) out.push_back(times_[k]);
+      before = after;
+    }
+    return;
+  }
+  case Kind::Sine:
+    if (rate(t0_) != 0.0) out.push_back(t0_);
+    return;
+  case Kind::Constant:
+  case Kind::SmoothStep:
+  case Kind::AccelLimited:
+    return;
+  }
+}
+
 double TimeFunction::rate(double t) const
 {
   switch (kind_) {

@@ -44,7 +44,8 @@ PetscErrorCode Simulation::restore(RunState *state)
     double value;
   } defining[] = {{"option_dt", "-ts_dt (dynamic.dt)", scene_.dynamic.dt},
                   {"option_rho_inf", "-boom_rho_inf (dynamic.rho_inf)", scene_.dynamic.rho_inf},
-                  {"option_adaptive_tol", "-boom_adaptive_tol", options_.adaptiveTolerance}};
+                  {"option_adaptive_tol", "-boom_adaptive_tol", options_.adaptiveTolerance},
+                  {"option_kink_restart", "-boom_kink_restart", options_.kinkRestart ? 1.0 : 0.0}};
   for (const auto &d : defining)
     PetscCheck(!in.hasScalar(d.key) || in.scalar(d.key) == d.value, comm_, PETSC_ERR_USER_INPUT,
                "restart file %s was written with %s = %s, this run has %s: restart with the options of that run", file,

@@ -32,6 +32,7 @@ PetscErrorCode Simulation::setUp()
     integrator_ = std::make_unique<GeneralizedAlpha>(assembler_, scene_.dynamic.rho_inf);
     PetscCall(integrator_->setUp(scene_.dynamic.max_newton));
     integrator_->setErrorTolerance(options_.adaptiveTolerance);
+    integrator_->setKinkRestart(options_.kinkRestart);
     auto energy = std::make_unique<EnergyCheck>(options_.energyTolerance, assembler_);
     energy_ = energy.get();
     monitors_.push_back(std::move(energy));
@@ -135,6 +136,7 @@ PetscErrorCode Simulation::writeCheckpoint(const std::string &path) const
   w.addScalar("option_dt", scene_.dynamic.dt);
   w.addScalar("option_rho_inf", scene_.dynamic.rho_inf);
   w.addScalar("option_adaptive_tol", options_.adaptiveTolerance);
+  w.addScalar("option_kink_restart", options_.kinkRestart ? 1.0 : 0.0);
   for (const auto &m : monitors_) PetscCall(m->save(w));
   PetscCall(w.write(path, scene_.text));
   PetscFunctionReturn(0);

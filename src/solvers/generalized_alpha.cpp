@@ -4,10 +4,21 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 
 namespace boomdyn {
+
+namespace {
+std::string timeText(double t)
+{
+  std::ostringstream os;
+  os << t;
+  return os.str();
+}
+} // namespace
 
 AlphaParameters AlphaParameters::fromRhoInf(double rho)
 {
@@ -22,11 +33,17 @@ AlphaParameters AlphaParameters::fromRhoInf(double rho)
 PetscErrorCode GeneralizedAlpha::setUp(PetscInt maxNewton)
 {
   PetscFunctionBeginUser;
-  for (PetscHandle<Vec> *v : {&q_, &v_, &qdd_, &a_, &lambda_, &x_, &qp_, &vc_, &ac_, &zero_})
+  for (PetscHandle<Vec> *v : {&q_, &v_, &qdd_, &a_, &lambda_, &x_, &qp_, &vc_, &ac_, &zero_, &shift_, &impulse_})
     PetscCall(assembler_.createVector(v->address()));
   PetscCall(newton_.setUp(assembler_, nullptr, maxNewton));
   PetscCall(sliders_.setUp(x_));
-  for (const ConstraintItem *c : assembler_.model().constraints()) hasDrives_ = hasDrives_ || c->constraint().dependsOnTime();
+  breakpoints_.clear();
+  for (const ConstraintItem *c : assembler_.model().constraints()) {
+    hasDrives_ = hasDrives_ || c->constraint().dependsOnTime();
+    c->constraint().velocityBreakpoints(breakpoints_);
+  }
+  std::sort(breakpoints_.begin(), breakpoints_.end());
+  breakpoints_.erase(std::unique(breakpoints_.begin(), breakpoints_.end()), breakpoints_.end());
   PetscReal stiffness;
   PetscCall(assembler_.characteristicScales(zero_, &massScale_, &stiffness));
   if (massScale_ <= 0) massScale_ = 1.0;
@@ -81,16 +98,28 @@ PetscErrorCode GeneralizedAlpha::forFirstOrderState(Op op)
 
 PetscErrorCode GeneralizedAlpha::initialize(double t0, Vec q0, Vec v0)
 {
+  PetscFunctionBeginUser;
+  t_ = t0;
+  impulseWork_ = 0;
+  PetscCall(VecCopy(q0, q_));
+  PetscCall(VecCopy(v0, v_));
+  PetscCall(VecSet(impulse_, 0.0));
+  // A drive that moves at t0 (a ramp starting at 0) needs velocities that
+  // follow it: the same projection as at a kink.
+  if (kinkRestart_ && hasDrives_) PetscCall(projectVelocities());
+  PetscCall(consistentAccelerations());
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode GeneralizedAlpha::consistentAccelerations()
+{
   PetscInt its;
   SNESConvergedReason reason;
   PetscFunctionBeginUser;
-  t_ = t0;
-  PetscCall(VecCopy(q0, q_));
-  PetscCall(VecCopy(v0, v_));
   // Acceleration-level system [M C_q^T; C_q 0] [qdd; lambda] = [Q; -gamma]:
   // linear in x = [qdd | lambda_hat], so one Newton step solves it.
   newton_.ctx = AssemblyContext{};
-  newton_.ctx.t = t0;
+  newton_.ctx.t = t_;
   newton_.ctx.kin = {0.0, 0.0, 1.0};
   newton_.ctx.sigma = massScale_;
   newton_.ctx.accelerationLevel = true;
@@ -98,7 +127,8 @@ PetscErrorCode GeneralizedAlpha::initialize(double t0, Vec q0, Vec v0)
   PetscCall(VecSet(x_, 0.0));
   PetscCall(newton_.solve(x_, &its, &reason));
   if (reason <= 0)
-    throw std::runtime_error(std::string("the equations of motion are singular at t = 0 (") + SNESConvergedReasons[reason] +
+    throw std::runtime_error(std::string("the equations of motion are singular at t = ") + timeText(t_) + " s (" +
+                             SNESConvergedReasons[reason] +
                              "): a body or a motion without support, or redundant or contradictory constraints "
                              "(two drives on one joint, a clamp plus an angle drive at the same point, ...)");
   PetscCall(VecCopy(x_, qdd_));
@@ -108,7 +138,82 @@ PetscErrorCode GeneralizedAlpha::initialize(double t0, Vec q0, Vec v0)
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode GeneralizedAlpha::step(double h, StepResult *result)
+// Impulsive step at t_ (docs/model.md §4.8): unknowns x = [dv | P_hat],
+//   M dv + C_q^T P + f_fric(P) = 0,   C_q (v + dv) + C_t = 0,
+// P = sigma P_hat. The acceleration-level residual with velocity-level
+// constraint rows is R(x) = [M dv - Q(q, v) + C_q^T P + f_fric(P); C_q (v + dv) + C_t];
+// subtracting its coordinate rows at x = 0 removes the finite forces Q, so
+// only the impulses act. The step is frictionless (LuGreFriction adds no
+// force at velocity level; z is left as it is): friction acts through the
+// finite forces before and after. The linear system is the matrix of the
+// consistent-acceleration solve, so one Newton iteration solves it. A
+// Coulomb impulse g |P_n| bounded by stick was tried: Newton on its
+// regularized sign law stalled on the study scene (docs/model.md §4.8).
+PetscErrorCode GeneralizedAlpha::projectVelocities()
+{
+  PetscInt its;
+  SNESConvergedReason reason;
+  PetscReal violation;
+  PetscFunctionBeginUser;
+  newton_.ctx = AssemblyContext{};
+  newton_.ctx.t = t_;
+  newton_.ctx.kin = {0.0, 0.0, 1.0};
+  newton_.ctx.sigma = massScale_;
+  newton_.ctx.accelerationLevel = true;
+  newton_.ctx.velocityLevel = true;
+  PetscCall(assembler_.setOffsets(q_, v_, nullptr));
+  PetscCall(VecSet(x_, 0.0));
+  PetscCall(assembler_.evaluate(newton_.ctx, x_, shift_, nullptr));
+  // The velocity-level constraint rows stay in the residual: C_q v + C_t.
+  PetscCall(VecCopy(shift_, impulse_));
+  PetscCall(assembler_.copyMultipliers(zero_, shift_, 0.0));
+  PetscCall(VecAXPY(impulse_, -1.0, shift_));
+  PetscCall(VecNorm(impulse_, NORM_INFINITY, &violation));
+  PetscCall(VecSet(impulse_, 0.0));
+  if (violation == 0) PetscFunctionReturn(0); // consistent: nothing to project
+  newton_.residualShift = shift_;
+  PetscErrorCode ierr = newton_.solve(x_, &its, &reason);
+  newton_.residualShift = nullptr;
+  PetscCall(ierr);
+  if (reason <= 0)
+    throw std::runtime_error(std::string("the velocity projection at the drive kink t = ") + timeText(t_) +
+                             " s did not converge (" + SNESConvergedReasons[reason] + ")");
+  PetscCall(assembler_.copyMultipliers(x_, impulse_, massScale_));
+  // v += dv on the coordinates (the multiplier entries of x are P_hat); the
+  // kinetic energy it adds is the impulses' work (q does not move).
+  EnergyParts before, after;
+  PetscCall(diagnostics(&before, &violation));
+  PetscCall(assembler_.copyMultipliers(zero_, x_, 0.0));
+  PetscCall(VecAXPY(v_, 1.0, x_));
+  PetscCall(diagnostics(&after, &violation));
+  impulseWork_ += after.kinetic - before.kinetic;
+  PetscFunctionReturn(0);
+}
+
+double GeneralizedAlpha::nextBreakpoint() const
+{
+  if (!kinkRestart_) return std::numeric_limits<double>::infinity();
+  const auto next = std::upper_bound(breakpoints_.begin(), breakpoints_.end(), t_);
+  return next == breakpoints_.end() ? std::numeric_limits<double>::infinity() : *next;
+}
+
+PetscErrorCode GeneralizedAlpha::stepToBreakpoint(StepResult *result)
+{
+  PetscFunctionBeginUser;
+  const double tb = nextBreakpoint();
+  PetscCheck(std::isfinite(tb), assembler_.comm(), PETSC_ERR_ORDER, "stepToBreakpoint: no breakpoint after t = %g s",
+             t_);
+  PetscCall(advance(tb - t_, tb, result));
+  if (!result->converged) PetscFunctionReturn(0);
+  PetscCall(projectVelocities());
+  PetscCall(consistentAccelerations());
+  result->restarted = true;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode GeneralizedAlpha::step(double h, StepResult *result) { return advance(h, t_ + h, result); }
+
+PetscErrorCode GeneralizedAlpha::advance(double h, double tEnd, StepResult *result)
 {
   const AlphaParameters &p = params_;
   PetscFunctionBeginUser;
@@ -145,14 +250,14 @@ PetscErrorCode GeneralizedAlpha::step(double h, StepResult *result)
     }));
 
     newton_.ctx = AssemblyContext{};
-    newton_.ctx.t = t_ + h;
+    newton_.ctx.t = tEnd;
     newton_.ctx.kin = {1.0, gammaP, betaP, 1.0 / h};
     newton_.ctx.sigma = sigma;
     PetscCall(assembler_.setOffsets(nullptr, vc_, ac_));
     PetscCall(newton_.solve(x_, &result->iterations, &result->reason));
     result->converged = result->reason > 0;
     if (!result->converged) break;
-    PetscCall(sliders_.update(x_, t_ + h, &relocated, &result->event));
+    PetscCall(sliders_.update(x_, tEnd, &relocated, &result->event));
     if (!result->event.empty()) result->converged = false;
     if (!relocated || !result->event.empty()) break;
   }
@@ -197,7 +302,7 @@ PetscErrorCode GeneralizedAlpha::step(double h, StepResult *result)
     }));
     PetscCall(VecCopy(x_, q_));
     PetscCall(assembler_.copyMultipliers(x_, lambda_, sigma));
-    t_ += h;
+    t_ = tEnd;
   }
   PetscCall(PetscLogEventEnd(logEvents().step, 0, 0, 0, 0));
   PetscFunctionReturn(0);
@@ -212,6 +317,7 @@ PetscErrorCode GeneralizedAlpha::save(StateWriter &out) const
   PetscCall(out.addVector("a", a_));
   PetscCall(out.addVector("lambda", lambda_));
   out.addScalar("t", t_);
+  out.addScalar("impulse_work", impulseWork_);
   out.addArray("slider_locations", sliders_.locations());
   PetscFunctionReturn(0);
 }
@@ -225,6 +331,7 @@ PetscErrorCode GeneralizedAlpha::restore(const StateReader &in)
   PetscCall(in.getVector("a", a_));
   PetscCall(in.getVector("lambda", lambda_));
   t_ = in.scalar("t");
+  impulseWork_ = in.hasScalar("impulse_work") ? in.scalar("impulse_work") : 0.0;
   // The joints' elements as they were, not as a fresh search would choose
   // them within the relocation band: restarts continue bitwise.
   PetscCall(sliders_.setLocations(in.array("slider_locations")));
@@ -249,6 +356,7 @@ PetscErrorCode GeneralizedAlpha::diagnostics(EnergyParts *energy, PetscReal *vio
   PetscCall(VecCopy(q_, qp_));
   PetscCall(assembler_.copyMultipliers(lambda_, qp_, 1.0));
   PetscCall(assembler_.diagnostics(ctx, qp_, energy, violation));
+  energy->impulseWork = impulseWork_;
   PetscFunctionReturn(0);
 }
 

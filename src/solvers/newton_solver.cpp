@@ -87,6 +87,7 @@ bool NewtonSolver::sameIterationMatrix(const AssemblyContext &a, const AssemblyC
   auto same = [](double u, double v) { return std::abs(u - v) <= 1e-12 * std::max(std::abs(u), std::abs(v)); };
   return same(a.kin.cQ, b.kin.cQ) && same(a.kin.cV, b.kin.cV) && same(a.kin.cA, b.kin.cA) &&
          same(a.kin.cZ, b.kin.cZ) && same(a.sigma, b.sigma) && a.accelerationLevel == b.accelerationLevel &&
+         a.velocityLevel == b.velocityLevel &&
          a.constraintBlocks == b.constraintBlocks;
 }
 
@@ -213,6 +214,7 @@ PetscErrorCode NewtonSolver::formFunction(SNES, Vec x, Vec F, void *self)
   auto *me = static_cast<NewtonSolver *>(self);
   PetscFunctionBeginUser;
   PetscCall(me->assembler_->evaluate(me->ctx, x, F, nullptr));
+  if (me->residualShift) PetscCall(VecAXPY(F, -1.0, me->residualShift));
   PetscFunctionReturn(0);
 }
 

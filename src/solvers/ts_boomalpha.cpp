@@ -42,11 +42,17 @@ PetscErrorCode stepBody(TS ts)
     const double h = st.h;
     const double remaining = ts->max_time - integrator.time();
     const bool match = ts->exact_final_time == TS_EXACTFINALTIME_MATCHSTEP;
-    const double attempt = match && remaining <= h * (1.0 + 1e-6) ? remaining : h;
+    // A drive's velocity kink within this step (or a millionth beyond it)
+    // ends the step, and the integrator restarts there (-boom_kink_restart);
+    // one at t_end is left to the final-time matching.
+    const double kink = integrator.nextBreakpoint();
+    const bool land = kink < ts->max_time - run->endTolerance && kink - integrator.time() <= h * (1.0 + 1e-6);
+    const double attempt = land ? kink - integrator.time() : match && remaining <= h * (1.0 + 1e-6) ? remaining : h;
     StepResult &r = run->last;
     r = StepResult{};
     run->attempt = attempt;
-    PetscCall(integrator.step(attempt, &r));
+    if (land) PetscCall(integrator.stepToBreakpoint(&r));
+    else PetscCall(integrator.step(attempt, &r));
     ts->snes_its += r.iterations;
     if (!r.event.empty()) { // no step size helps: stop and say why
       fail(ts, TS_DIVERGED_STEP_REJECTED, r.event);
@@ -94,6 +100,8 @@ PetscErrorCode stepBody(TS ts)
                "-boom_adaptive_tol needs -ts_adapt_type %s: the error estimate decides whether a step is taken",
                TSADAPTBOOMALPHA);
     if (!ours) st.h = next; // the boomalpha adapt sets st.h itself (PETSc may shorten next to hit max_time)
+    // A step shortened to land on a kink does not shorten the next one.
+    if (accept && land) st.h = std::max(st.h, h);
     if (!accept) {
       ++st.rejected, ++ts->reject;
       if (st.h < run->dtMin) {

@@ -134,7 +134,15 @@ TEST(FastExtraction, ContactPointCrossesSeveralElementsInOneStep)
   // (-boom_jacobian_reuse), which then keeps larger steps over several
   // element crossings, with 8x the energy error (4.6e2 J against 56 J); the
   // bounds below are those of full Newton's step history.
-  const DynamicHistory run = runDynamicWithOption(scene, PETSC_COMM_WORLD, "-boom_jacobian_reuse", "0");
+  // Without the kink restart (model.md §4.8): the drive's rate jumps by
+  // 5 m/s at 0.1 s and 0.35 s, and the restart imposes these jumps at once
+  // through each mesh's mass matrix; the elastic waves that this starts
+  // differ between 128 and 16 elements (tip 8.5 cm apart at 0.6 s, against
+  // 1 cm below). Generalized-alpha stepping through the kinks damps them
+  // alike. Its energy residual (measure()) also has no term for the
+  // impulses' work. This test is about contact points crossing elements,
+  // not kinks.
+  const DynamicHistory run = runDynamicWithOption(scene, PETSC_COMM_WORLD, "-boom_jacobian_reuse", "0", false);
   ASSERT_TRUE(run.summary.completed) << run.summary.failure;
   EXPECT_TRUE(allFinite(run));
   const Extremes e = measure(run, scene, 2.0 / 128);
@@ -144,7 +152,8 @@ TEST(FastExtraction, ContactPointCrossesSeveralElementsInOneStep)
   EXPECT_LT(e.violation, 1e-8);
   EXPECT_LT(e.created, 1e-3 * e.drivenWork);
   // Nearly the same end state as 16 elements (under one crossing per step) at the same h.
-  const DynamicHistory fine = runDynamicWithOption(extraction(1.25, 5.0, 0.6, 1e-2), PETSC_COMM_WORLD, "-boom_jacobian_reuse", "0");
+  const DynamicHistory fine =
+    runDynamicWithOption(extraction(1.25, 5.0, 0.6, 1e-2), PETSC_COMM_WORLD, "-boom_jacobian_reuse", "0", false);
   if (rank() == 0) {
     const double gap = (run.sensors.back()[0].position - fine.sensors.back()[0].position).norm();
     PetscPrintf(PETSC_COMM_WORLD, "  tip at 0.6 s: %.5f, %.5f m (16 elements: %.5f, %.5f m)\n",

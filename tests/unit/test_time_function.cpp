@@ -217,3 +217,36 @@ TEST(TimeFunction, InvalidParametersThrow)
   EXPECT_THROW(TimeFunction::table({0.0, 0.0}, {1.0, 2.0}), std::invalid_argument);
   EXPECT_THROW(TimeFunction::sine(1.0, -1.0, 0, 0), std::invalid_argument);
 }
+
+// Velocity breakpoints (kink restart, docs/model.md §1.6 and §4.8): where
+// the rate jumps, and only there.
+TEST(TimeFunction, VelocityBreakpointsAreWhereTheRateJumps)
+{
+  std::vector<double> b;
+  TimeFunction::ramp(2.0, 7.0, 0.0, 1.25).velocityBreakpoints(b);
+  EXPECT_EQ(b, (std::vector<double>{2.0, 7.0}));
+  b.clear();
+  TimeFunction::ramp(2.0, 7.0, 1.0, 1.0).velocityBreakpoints(b); // flat: no kink
+  EXPECT_TRUE(b.empty());
+  b.clear();
+  // Knot 1 is collinear (no kink), the first knot starts a slope, the last ends one.
+  TimeFunction::table({0.0, 0.5, 1.0, 1.5, 2.0}, {0.0, 1.0, 2.0, 2.0, 0.0}).scaled(0.1).velocityBreakpoints(b);
+  EXPECT_EQ(b, (std::vector<double>{0.0, 1.0, 1.5, 2.0}));
+  b.clear();
+  TimeFunction::table({0.0, 1.0, 2.0}, {3.0, 3.0, 4.0}).velocityBreakpoints(b); // flat start: first knot no kink
+  EXPECT_EQ(b, (std::vector<double>{1.0, 2.0}));
+  b.clear();
+  TimeFunction::sine(1.0, 2.0, 0.0, 0.0, 0.3).velocityBreakpoints(b); // starts with rate 4 pi
+  EXPECT_EQ(b, (std::vector<double>{0.3}));
+  b.clear();
+  TimeFunction::smoothStep(0.0, 1.0, 0.0, 1.0).velocityBreakpoints(b);
+  TimeFunction::accelLimited(0.0, 0.0, 1.0, 0.5, 1.0).velocityBreakpoints(b);
+  TimeFunction::constant(2.0).velocityBreakpoints(b);
+  EXPECT_TRUE(b.empty()) << "smooth step, accel-limited move and constant have no kinks";
+  // Every reported kink is a jump of the rate: left and right derivatives differ.
+  const TimeFunction f = TimeFunction::table({0.0, 0.5, 1.0, 1.5}, {0.0, 12.0, 12.0, 0.0});
+  b.clear();
+  f.velocityBreakpoints(b);
+  ASSERT_EQ(b, (std::vector<double>{0.0, 0.5, 1.0, 1.5}));
+  for (double t : b) EXPECT_NE(f.rate(t - 1e-9), f.rate(t)) << t;
+}
