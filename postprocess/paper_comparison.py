@@ -646,6 +646,9 @@ def write_report(path, runs, figures, n):
            ratio(tip["amp_max_ext"], tip["amp_rest"]), mm(tip["amp_end"])))
 
     # Fig. 7
+    add("The telescoping mechanism as an extension + retraction pair of elastic ropes (variant scene "
+        "`inputs/paper_extraction_rope_pair.yaml`) and the two-number calibration with slide pads (issue 15): "
+        "docs/paper-scenes.md, sections \"Extension + retraction rope pair\" and \"Two-number calibration\".\n")
     add("## Fig. 7: change of frequency in time\n")
     add(link("fig07", "Fig. 7 reproduced"))
     add("")

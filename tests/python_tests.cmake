@@ -47,6 +47,7 @@ boomdyn_script_test(postprocess.snapshots postprocess/test_snapshots.py postproc
 boomdyn_script_test(postprocess.paper_comparison_figures postprocess/test_paper_comparison.py postprocess)
 boomdyn_script_test(postprocess.xdmf postprocess/test_xdmf.py postprocess)
 boomdyn_script_test(postprocess.study postprocess/test_study.py postprocess)
+boomdyn_script_test(postprocess.calibrate_paper postprocess/test_calibrate_paper.py postprocess)
 boomdyn_script_test(regression.restart regression/test_restart.py "regression;mpi")
 boomdyn_script_test(ts.options ts/test_ts_options.py ts)
 set_tests_properties(regression.restart PROPERTIES PROCESSORS 2
