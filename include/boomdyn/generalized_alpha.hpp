@@ -102,6 +102,7 @@ private:
   PetscErrorCode projectVelocities();
   // qdd_, a_ and lambda_ from the acceleration-level equations at (t_, q_, v_).
   PetscErrorCode consistentAccelerations();
+  void setAccelerationLevelContext(bool velocityLevel);
   template <class Op>
   PetscErrorCode forFirstOrder(Op op);
   template <class Op>

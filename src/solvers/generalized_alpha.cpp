@@ -111,6 +111,19 @@ PetscErrorCode GeneralizedAlpha::initialize(double t0, Vec q0, Vec v0)
   PetscFunctionReturn(0);
 }
 
+// The matrix [M C_q^T; C_q 0] at t_ in x = [qdd | lambda_hat]
+// (consistent accelerations), or with velocity-level constraint rows
+// C_q v + C_t in x = [dv | P_hat] (the impulsive projection at a kink).
+void GeneralizedAlpha::setAccelerationLevelContext(bool velocityLevel)
+{
+  newton_.ctx = AssemblyContext{};
+  newton_.ctx.t = t_;
+  newton_.ctx.kin = {0.0, 0.0, 1.0};
+  newton_.ctx.sigma = massScale_;
+  newton_.ctx.accelerationLevel = true;
+  newton_.ctx.velocityLevel = velocityLevel;
+}
+
 PetscErrorCode GeneralizedAlpha::consistentAccelerations()
 {
   PetscInt its;
@@ -118,11 +131,7 @@ PetscErrorCode GeneralizedAlpha::consistentAccelerations()
   PetscFunctionBeginUser;
   // Acceleration-level system [M C_q^T; C_q 0] [qdd; lambda] = [Q; -gamma]:
   // linear in x = [qdd | lambda_hat], so one Newton step solves it.
-  newton_.ctx = AssemblyContext{};
-  newton_.ctx.t = t_;
-  newton_.ctx.kin = {0.0, 0.0, 1.0};
-  newton_.ctx.sigma = massScale_;
-  newton_.ctx.accelerationLevel = true;
+  setAccelerationLevelContext(false);
   PetscCall(assembler_.setOffsets(q_, v_, nullptr));
   PetscCall(VecSet(x_, 0.0));
   PetscCall(newton_.solve(x_, &its, &reason));
@@ -155,12 +164,7 @@ PetscErrorCode GeneralizedAlpha::projectVelocities()
   SNESConvergedReason reason;
   PetscReal violation;
   PetscFunctionBeginUser;
-  newton_.ctx = AssemblyContext{};
-  newton_.ctx.t = t_;
-  newton_.ctx.kin = {0.0, 0.0, 1.0};
-  newton_.ctx.sigma = massScale_;
-  newton_.ctx.accelerationLevel = true;
-  newton_.ctx.velocityLevel = true;
+  setAccelerationLevelContext(true);
   PetscCall(assembler_.setOffsets(q_, v_, nullptr));
   PetscCall(VecSet(x_, 0.0));
   PetscCall(assembler_.evaluate(newton_.ctx, x_, shift_, nullptr));
