@@ -7,6 +7,7 @@
 #include "boomdyn/pin.hpp"
 #include "boomdyn/rigid_body.hpp"
 #include "boomdyn/rope.hpp"
+#include "rope_test_bodies.hpp"
 #include "boomdyn/sliding_joint.hpp"
 
 #include <gtest/gtest.h>
@@ -173,13 +174,8 @@ TEST(RigidBodyConstraints, PinAngleDriveAndSlidingJointOnRigidBodies)
 
 TEST(RopeConstraint, DerivativesMatchFiniteDifferencesOnBeamsAndRigidBodies)
 {
-  AncfBeam b1("b1", 2.0, 4, kSection, Vec2(0, 0), 0.1, 0);
-  AncfBeam b2("b2", 2.0, 4, kSection, Vec2(0.5, 0.05), 0.1, 20);
-  RigidBody b3("b3", 2.0, 10.0, Vec2(1.0, 0.1), 0.1, 40);
-  std::vector<double> q0(43);
-  b1.initialCoordinates(q0.data());
-  b2.initialCoordinates(q0.data() + 20);
-  b3.initialCoordinates(q0.data() + 40);
+  const rope_test::Bodies bodies;
+  const auto &[b1, b2, b3, q0] = bodies;
   // P near boom 1's front, pulley Q at boom 2's front, R at boom 3's rear.
   Rope rope("rope", {&b1, 1.9}, {&b2, 2.0}, {&b3, 0.0}, 3.0);
   checkConstraint(rope, q0, 41);

@@ -7,6 +7,7 @@
 #include "boomdyn/elastic_rope.hpp"
 #include "boomdyn/rigid_body.hpp"
 #include "boomdyn/rope.hpp"
+#include "rope_test_bodies.hpp"
 
 #include <gtest/gtest.h>
 
@@ -15,8 +16,6 @@
 using namespace boomdyn;
 
 namespace {
-
-const ancf::Section kSection{1e8, 1e5, 30};
 
 struct Residual {
   std::vector<double> r, J;
@@ -38,13 +37,8 @@ Residual evaluate(const ElasticRope &rope, const std::vector<double> &q, const s
 
 TEST(ElasticRope, JacobianMatchesFiniteDifferencesOverTwoPulleys)
 {
-  AncfBeam b1("b1", 2.0, 4, kSection, Vec2(0, 0), 0.1, 0);
-  AncfBeam b2("b2", 2.0, 4, kSection, Vec2(0.5, 0.05), 0.1, 20);
-  RigidBody b3("b3", 2.0, 10.0, Vec2(1.0, 0.1), 0.1, 40);
-  std::vector<double> q0(43);
-  b1.initialCoordinates(q0.data());
-  b2.initialCoordinates(q0.data() + 20);
-  b3.initialCoordinates(q0.data() + 40);
+  const rope_test::Bodies bodies;
+  const auto &[b1, b2, b3, q0] = bodies;
   const RopePath path({{&b1, 0.3}, {&b2, 2.0}, {&b3, 0.0}, {&b1, 1.7}}); // a pulley inside an element, one on a node
   std::vector<PetscInt> dofs;
   path.coordinates(dofs);
@@ -91,13 +85,8 @@ TEST(ElasticRope, JacobianMatchesFiniteDifferencesOverTwoPulleys)
 // gradient as before (C = L - l, C_q = -l_q).
 TEST(ElasticRope, PathAgreesWithTheRigidRope)
 {
-  AncfBeam b1("b1", 2.0, 4, kSection, Vec2(0, 0), 0.1, 0);
-  AncfBeam b2("b2", 2.0, 4, kSection, Vec2(0.5, 0.05), 0.1, 20);
-  RigidBody b3("b3", 2.0, 10.0, Vec2(1.0, 0.1), 0.1, 40);
-  std::vector<double> q0(43);
-  b1.initialCoordinates(q0.data());
-  b2.initialCoordinates(q0.data() + 20);
-  b3.initialCoordinates(q0.data() + 40);
+  const rope_test::Bodies bodies;
+  const auto &[b1, b2, b3, q0] = bodies;
   const Rope rope("rope", {&b1, 1.9}, {&b2, 2.0}, {&b3, 0.0}, 3.0);
   const RopePath path({{&b1, 1.9}, {&b2, 2.0}, {&b3, 0.0}});
   std::vector<PetscInt> dofs;
