@@ -106,7 +106,14 @@ PetscErrorCode Simulation::runDynamic(const std::function<bool()> &stop)
     PetscCall(afterStep(state, &s.failure));
     PetscFunctionReturn(0);
   };
-  PetscCall(integrate(*integrator_, scene_.dynamic, onStep, &summary_, &stepper_, stop));
+  // A step that cannot go on (a singular system, a projection at a kink that
+  // does not converge, ...) is reported by exception, which must become a
+  // PETSc error here and not unwind through main.
+  {
+    PetscErrorCode ierr = 0;
+    PetscCallCXX(ierr = integrate(*integrator_, scene_.dynamic, onStep, &summary_, &stepper_, stop));
+    PetscCall(ierr);
+  }
 
   outcome_.steps = summary_.steps;
   outcome_.rejected = summary_.rejected;

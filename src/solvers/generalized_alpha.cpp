@@ -162,7 +162,7 @@ PetscErrorCode GeneralizedAlpha::projectVelocities()
 {
   PetscInt its;
   SNESConvergedReason reason;
-  PetscReal violation;
+  PetscReal violation, initialResidual;
   PetscFunctionBeginUser;
   setAccelerationLevelContext(true);
   PetscCall(assembler_.setOffsets(q_, v_, nullptr));
@@ -173,12 +173,26 @@ PetscErrorCode GeneralizedAlpha::projectVelocities()
   PetscCall(assembler_.copyMultipliers(zero_, shift_, 0.0));
   PetscCall(VecAXPY(impulse_, -1.0, shift_));
   PetscCall(VecNorm(impulse_, NORM_INFINITY, &violation));
+  PetscCall(VecNorm(impulse_, NORM_2, &initialResidual));
   PetscCall(VecSet(impulse_, 0.0));
   if (violation == 0) PetscFunctionReturn(0); // consistent: nothing to project
   newton_.residualShift = shift_;
   PetscErrorCode ierr = newton_.solve(x_, &its, &reason);
   newton_.residualShift = nullptr;
   PetscCall(ierr);
+  // The system is linear, and its coordinate rows start at zero residual, so
+  // the block test (block_convergence.cpp) can stop them only by the size of
+  // the increment, which the solve's round-off can keep above 1e-10 relative
+  // (stick-slip scene at h = 5e-4 s: increments 2e-10, residual 2e-13 after
+  // the first iteration against 0.21 at the start). What decides is the
+  // residual: the relative test of the SNES tolerance on the whole system.
+  if (reason <= 0) {
+    PetscReal rtol, atol, stol, finalResidual;
+    PetscInt maxIt, maxF;
+    PetscCall(SNESGetTolerances(newton_.snes(), &atol, &rtol, &stol, &maxIt, &maxF));
+    PetscCall(SNESGetFunctionNorm(newton_.snes(), &finalResidual));
+    if (std::isfinite(finalResidual) && finalResidual <= rtol * initialResidual) reason = SNES_CONVERGED_FNORM_RELATIVE;
+  }
   if (reason <= 0)
     throw std::runtime_error(std::string("the velocity projection at the drive kink t = ") + timeText(t_) +
                              " s did not converge (" + SNESConvergedReasons[reason] + ")");
