@@ -1034,7 +1034,8 @@ def write_report(path, runs, figures, n):
         "frame as the first mode bends the longer overhang. With damping (above) the vibration decays before "
         "the extraction, and what remains to grow is what the extraction itself excites.\n")
     add("The damped runs use generalized-α with ρ∞ = 0.8 at h = 1 ms like the undamped ones. Right after the "
-        "step load the scheme feeds the mesh's overdamped top modes (ζ = ηω/2 ≫ 1 at ωh ≫ 1) energy (about 47 J in the single-calibration scene) for a "
+        "step load the scheme feeds the mesh's overdamped top modes (ζ = ηω/2 ≫ 1 at ωh ≫ 1) energy (about 47 J "
+        "in the single-calibration scene) for a "
         "few steps through the damping force, a property of generalized-α with ρ∞ < 1 (docs/model.md §7.1); the "
         "energy check counts the damping work as the discrete forces do it and the balance closes (paper "
         "extraction: excess %.2f J of %.0f J involved over 7 s).\n"
