@@ -200,12 +200,12 @@ inline DynamicHistory runDynamicWithOption(const Scene &scene, MPI_Comm comm, co
   return h;
 }
 
-// The paper extraction scene (inputs/paper_extraction.yaml) shortened to
+// The paper extraction scene (inputs/paper_extraction_single_calibration.yaml) shortened to
 // `seconds` of smooth extraction at 1 m/s from t = 0, so that the contact
 // points cross elements within a short run.
 inline Scene shortenedExtraction(double seconds)
 {
-  Scene scene = readSceneFile(std::string(BOOMDYN_SOURCE_DIR) + "/inputs/paper_extraction.yaml");
+  Scene scene = readSceneFile(std::string(BOOMDYN_SOURCE_DIR) + "/inputs/paper_extraction_single_calibration.yaml");
   for (auto &c : scene.constraints)
     if (c.type == "extraction_drive")
       c.set("displacement", TimeFunction::smoothStep(0.0, seconds, 0.0, seconds));

@@ -12,14 +12,14 @@ using namespace boomdyn::testing;
 
 namespace {
 
-// Rows of paper_extraction.yaml: clamp (3), j1..j4 (2 each), drive, rope.
+// Rows of paper_extraction_single_calibration.yaml: clamp (3), j1..j4 (2 each), drive, rope.
 constexpr int kDriveRow = 11, kJ2 = 1;
 
 // The paper's extraction scene with the drive moving `distance` (m) at
 // `speed` (m/s) from t = 0.1 s, run to `tEnd` at step h, `elements` per boom.
 Scene extraction(double distance, double speed, double tEnd, double h, int elements = 16)
 {
-  Scene scene = inputScene("paper_extraction.yaml");
+  Scene scene = inputScene("paper_extraction_single_calibration.yaml");
   for (ComponentSpec &c : scene.constraints)
     if (c.type == "extraction_drive")
       c.set("displacement", TimeFunction::ramp(0.1, 0.1 + std::abs(distance) / speed, 0.0, distance));

@@ -55,7 +55,7 @@ def main():
         check(abs(tension - half_weight) < 1e-6 * half_weight,
                      "the link carries W/2 = %.6f N (written %.9f N)" % (half_weight, tension))
 
-    extraction = os.path.join(source, "inputs", "paper_extraction.yaml")
+    extraction = os.path.join(source, "inputs", "paper_extraction_single_calibration.yaml")  # inextensible rope
     with h5py.File(run(extraction, "extraction_channels", ["-ts_max_time", "0.05", "-boom_elements", "4"])) as f:
         names = list(f["layout/output_names"].asstr()[:])
         check("rope/rope/tension" in names, "the rope declares rope/rope/tension (got %s)" % names)

@@ -180,7 +180,7 @@ namespace {
 // Tracked frequencies every 0.1 s along a shortened extraction of the paper scene.
 std::vector<double> trackedAlongExtraction(MPI_Comm comm)
 {
-  Scene scene = readSceneFile(std::string(BOOMDYN_SOURCE_DIR) + "/inputs/paper_extraction.yaml");
+  Scene scene = readSceneFile(std::string(BOOMDYN_SOURCE_DIR) + "/inputs/paper_extraction_single_calibration.yaml");
   for (auto &c : scene.constraints)
     if (c.type == "extraction_drive") c.set("displacement", TimeFunction::smoothStep(0.0, 0.4, 0.0, 0.4));
   scene.dynamic.t_end = 0.4;

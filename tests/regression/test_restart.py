@@ -22,7 +22,7 @@ import script_checks  # noqa: E402
 boomdyn, source, work = sys.argv[1:4]
 work = os.path.join(work, "test_output", "restart")
 os.makedirs(work, exist_ok=True)
-scene = os.path.join(source, "inputs", "paper_extraction.yaml")
+scene = os.path.join(source, "inputs", "paper_extraction_single_calibration.yaml")
 # Bitwise restarts are a property of full Newton (the default, and stated here
 # so that the test does not depend on it): with modified Newton a restart
 # starts from a fresh Jacobian where the uninterrupted run had an older one,

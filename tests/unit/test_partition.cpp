@@ -31,7 +31,7 @@ TEST(Partition, ChainIsCutOncePerExtraPartByBothMethods)
 
 TEST(Partition, MetisCutsFewerCouplingsOfTheTelescope)
 {
-  const Model model(readSceneFile(std::string(BOOMDYN_SOURCE_DIR) + "/inputs/paper_extraction.yaml"));
+  const Model model(readSceneFile(std::string(BOOMDYN_SOURCE_DIR) + "/inputs/paper_extraction_single_calibration.yaml"));
   const PartitionQuality contiguous = evaluatePartition(model, contiguousPartition(model, 2), 2, "contiguous");
   const PartitionQuality metis = evaluatePartition(model, metisPartition(model, 2), 2, "metis");
   std::printf("  telescope, 2 parts: contiguous %d interface unknowns, %d cut edges, imbalance %.3f; "

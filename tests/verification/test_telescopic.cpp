@@ -1,4 +1,4 @@
-// The paper's three-boom telescope (inputs/paper_extraction.yaml): rope
+// The paper's three-boom telescope (inputs/paper_extraction_single_calibration.yaml): rope
 // kinematics, and extraction across track elements.
 #include "support.hpp"
 
@@ -13,10 +13,10 @@ namespace {
 
 Scene paperScene()
 {
-  std::ifstream in(std::string(BOOMDYN_SOURCE_DIR) + "/inputs/paper_extraction.yaml");
+  std::ifstream in(std::string(BOOMDYN_SOURCE_DIR) + "/inputs/paper_extraction_single_calibration.yaml");
   std::stringstream text;
   text << in.rdbuf();
-  return parseScene(text.str(), "paper_extraction.yaml");
+  return parseScene(text.str(), "paper_extraction_single_calibration.yaml");
 }
 
 // Slack coordinates: j1, j2, j3, j4 in scene order.
