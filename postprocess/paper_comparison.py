@@ -654,7 +654,7 @@ def write_report(path, runs, figures, n):
     add(link("fig05", "Fig. 5 reproduced"))
     add("")
     add("Scene `paper_stick_slip` (booms 1-2, LuGre at both pads, μ_s = 0.15, μ_c = 0.1, Kelvin–Voigt damping "
-        "η = 1.04e-4 s; elevation piecewise linear through (0 s, 0°), (6.2986 s, −10°), (14 s, 19.22°)). The "
+        "η = 1.04e-4 s; elevation piecewise linear through (0 s, 0°), (6.2986 s, −10°), (14 s, 19.2368°); two-number sections). The "
         "paper: *\"boom 2 keeps the stick state until at t = 5.4 s ... boom 2 gets stick again at t = 8.3 s "
         "until boom 2 starts sliding into boom 1 again at t = 13.5 s\"*.\n")
     add("The elevation profile is refitted for the damped model (docs/paper-scenes.md, \"Stick-slip\"): "
