@@ -64,3 +64,4 @@ boomdyn_script_test(postprocess.output_channels postprocess/test_output_channels
 boomdyn_script_test(regression.help regression/test_help.py regression)
 boomdyn_script_test(regression.option_values regression/test_option_values.py regression)
 boomdyn_script_test(regression.damped_modal_output regression/test_damped_modal_output.py regression)
+boomdyn_script_test(postprocess.hoist_output postprocess/test_hoist_output.py postprocess)

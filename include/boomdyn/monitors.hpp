@@ -10,6 +10,7 @@
 #pragma once
 
 #include "boomdyn/assembler.hpp"
+#include "boomdyn/design_numbers.hpp"
 #include "boomdyn/energy_balance.hpp"
 #include "boomdyn/frequency_tracker.hpp"
 #include "boomdyn/monitor.hpp"
@@ -69,6 +70,7 @@ private:
   RunInfo info_;
   double stateInterval_, nextState_;
   RopeTensions ropes_;
+  DesignNumbers design_; // peak rope tensions, root moments, contact forces (dynamic runs)
   std::vector<SensorReading> readings_;
   std::vector<double> slacks_, multipliers_, deflections_, outputs_; // rank 0 data of the current step
 };

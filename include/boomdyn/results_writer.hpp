@@ -8,6 +8,7 @@
 #include "boomdyn/hdf5_file.hpp"
 #include "boomdyn/model.hpp"
 #include "boomdyn/petsc_handle.hpp"
+#include "boomdyn/rope_polylines.hpp"
 #include "boomdyn/sensors.hpp"
 #include "boomdyn/stick_slip.hpp"
 
@@ -16,6 +17,7 @@
 #include <chrono>
 #include <memory>
 #include <string>
+#include <utility>
 
 namespace boomdyn {
 
@@ -26,7 +28,7 @@ struct RunInfo {
 
 class ResultsWriter {
 public:
-  ResultsWriter(const Model &model, MPI_Comm comm) : model_(model), comm_(comm) {}
+  ResultsWriter(const Model &model, MPI_Comm comm) : model_(model), comm_(comm), ropes_(drawnRopes(model)) {}
   // Closes a file left open by an error that unwound the run, marking it
   // as failed (an HDF5 file, not a PETSc object; these live in handles).
   ~ResultsWriter();
@@ -58,6 +60,8 @@ public:
   const std::string &path() const { return path_; }
   // Steps at which a rope would have had to push (tension < 0), for /summary.
   void setSlackRopeSteps(PetscInt n) { slackRopeSteps_ = n; }
+  // Further /summary attributes (name, value): the design numbers (design_numbers.hpp).
+  void setSummaryNumbers(std::vector<std::pair<std::string, double>> numbers) { summaryNumbers_ = std::move(numbers); }
   // Energy balance of a dynamic run (/summary attributes input_work_J,
   // energy_excess_J, energy_involved_J).
   void setEnergyBalance(double inputWork, double excess, double involved)
@@ -85,8 +89,10 @@ private:
   PetscInt slackRopeSteps_ = 0;
   double energyBalance_[3] = {0, 0, 0};
   bool hasEnergyBalance_ = false;
+  std::vector<std::pair<std::string, double>> summaryNumbers_;
   std::vector<double> snapshotTimes_;
-  std::size_t sampledPoints_ = 0, sampledSegments_ = 0;
+  std::size_t sampledPoints_ = 0, sampledSegments_ = 0, ropePoints_ = 0, ropeSegments_ = 0;
+  std::vector<DrawnRope> ropes_; // drawn at every snapshot (rope_polylines.hpp)
   long long eventCount_ = 0, typeEventCount_ = 0;
   std::chrono::steady_clock::time_point lastFlush_ = std::chrono::steady_clock::now(), lastXdmf_ = lastFlush_;
 };

@@ -25,6 +25,7 @@ public:
   bool dependsOnTime() const override { return false; }
   // Length of the rope when the points are at the given coordinates (values in coordinates() order).
   double spannedLength(const double *q) const;
+  const RopePath &path() const { return path_; }
 
 private:
   std::string name_;

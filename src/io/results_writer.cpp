@@ -305,6 +305,15 @@ void ResultsWriter::writeSampledBooms(double t, const std::vector<double> &q, co
   file_->writeArray(base + "/axial_strain", strain, {np});
   file_->writeArray(base + "/curvature", curvature, {np});
   file_->setAttribute(base, "time", t);
+  // The ropes as polylines through their pulleys (rope_polylines.hpp).
+  std::vector<double> ropePoints;
+  std::vector<int> ropeSegments;
+  ropePolylines(ropes_, q, ropePoints, ropeSegments);
+  if (!ropeSegments.empty()) {
+    if (snapshotTimes_.empty()) file_->writeArray("/paraview/rope_segments", ropeSegments, {ropeSegments.size() / 2, 2});
+    file_->writeArray(base + "/rope_points", ropePoints, {ropePoints.size() / 3, 3});
+  }
+  ropePoints_ = ropePoints.size() / 3, ropeSegments_ = ropeSegments.size() / 2;
   snapshotTimes_.push_back(t);
   sampledPoints_ = np, sampledSegments_ = ns;
 }
@@ -344,6 +353,9 @@ void ResultsWriter::writeXdmf() const
     throw std::runtime_error("cannot write '" + xmf + "' (a full disk?)");
   }
   std::rename((xmf + ".tmp").c_str(), xmf.c_str());
+  if (ropeSegments_ > 0)
+    writeRopesXdmf(xmf.substr(0, xmf.size() - 4) + ".ropes.xmf", h5, model_.scene().name, snapshotTimes_, ropePoints_,
+                   ropeSegments_);
 }
 
 PetscErrorCode ResultsWriter::writeModes(double t, const ModalResult &modes)
@@ -470,6 +482,7 @@ PetscErrorCode ResultsWriter::finish(const std::string &status, PetscInt steps, 
       file_->setAttribute("/summary", "stick_slip_events", static_cast<long long>(eventCount_));
     if (!model_.eventSources().empty())
       file_->setAttribute("/summary", "type_events", static_cast<long long>(typeEventCount_));
+    for (const auto &[name, value] : summaryNumbers_) file_->setAttribute("/summary", name, value);
     const bool taken = !file_->stillAtPath();
     file_->close();
     if (taken)

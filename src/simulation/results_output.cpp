@@ -10,7 +10,8 @@ namespace boomdyn {
 ResultsOutput::ResultsOutput(Simulation &sim, const std::string &path, bool overwrite, const RunInfo &info,
                              double stateInterval)
   : sim_(sim), writer_(sim.model(), sim.comm()), path_(path), overwrite_(overwrite), info_(info),
-    stateInterval_(stateInterval), nextState_(stateInterval), ropes_(sim.model())
+    stateInterval_(stateInterval), nextState_(stateInterval), ropes_(sim.model()),
+    design_(sim.model())
 {
 }
 
@@ -40,6 +41,7 @@ PetscErrorCode ResultsOutput::writeJoints(const RunState &s)
   PetscCall(sim_.sensors().readFrames(s.q, deflections_));
   PetscCall(ropes_.update(sim_.comm(), s.t, multipliers_, tensions));
   PetscCall(sim_.sensors().readOutputs(s.q, s.v, multipliers_, outputs_));
+  design_.update(s.t, outputs_, multipliers_);
   PetscCall(writer_.appendJoints(slacks_, multipliers_, tensions, deflections_, outputs_));
   PetscFunctionReturn(0);
 }
@@ -98,6 +100,10 @@ PetscErrorCode ResultsOutput::finish(const RunState &s, const RunOutcome &outcom
   if (outcome.hasEnergyBalance)
     writer_.setEnergyBalance(outcome.inputWork, outcome.energyExcess, outcome.energyInvolved);
   writer_.setSlackRopeSteps(ropes_.slackSteps());
+  if (outcome.dynamic) {
+    writer_.setSummaryNumbers(design_.attributes());
+    if (!sim_.options().quiet) PetscCall(PetscPrintf(sim_.comm(), "%s", design_.report().c_str()));
+  }
   PetscCall(writer_.finish(outcome.status, outcome.steps, outcome.rejected, outcome.wallTime, outcome.maxViolation));
   PetscFunctionReturn(0);
 }
@@ -107,6 +113,9 @@ PetscErrorCode ResultsOutput::save(CheckpointWriter &out) const
   PetscFunctionBeginUser;
   out.addScalar("next_state", nextState_);
   out.addScalar("slack_rope_steps", ropes_.slackSteps());
+  const std::vector<double> design = design_.state();
+  out.addScalar("design_numbers_size", (double)design.size());
+  out.addArray("design_numbers", design);
   PetscFunctionReturn(0);
 }
 
@@ -115,6 +124,8 @@ PetscErrorCode ResultsOutput::restore(const CheckpointReader &in)
   PetscFunctionBeginUser;
   nextState_ = in.scalar("next_state");
   ropes_.setSlackSteps(static_cast<PetscInt>(in.scalar("slack_rope_steps")));
+  // Checkpoints from before the design numbers start them afresh at the restart.
+  if (in.hasScalar("design_numbers_size")) design_.restore(in.array("design_numbers"));
   PetscFunctionReturn(0);
 }
 

@@ -1,0 +1,147 @@
+#include "boomdyn/design_numbers.hpp"
+
+#include "boomdyn/angle_drive.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <set>
+
+namespace boomdyn {
+
+DesignNumbers::DesignNumbers(const Model &model)
+{
+  const auto &channels = model.outputChannels();
+  for (std::size_t k = 0; k < channels.size(); ++k) {
+    const OutputChannel &ch = channels[k];
+    if ((ch.group == "rope" || ch.group == "elastic_rope") && ch.quantity == "tension")
+      items_.push_back({Kind::Tension, ch.group, ch.name, static_cast<PetscInt>(k)});
+    else if (ch.group == "joint_resultants" && ch.quantity == "normal_force")
+      items_.push_back({Kind::ContactForce, ch.group, ch.name, static_cast<PetscInt>(k)});
+  }
+  // Clamps: the angle drive "<name>.angle" beside the pin "<name>.pin".
+  // Its constraint C = j(theta) . r'(s) with the constraint force -Cq^T lambda
+  // is the moment -lambda |r'| on the body (|r'| = 1 + axial strain, taken
+  // as 1: relative error ~1e-5 for steel booms): the reaction moment at the
+  // root, counter-clockwise positive, equal and opposite to the bending
+  // moment the root section carries.
+  std::set<std::string> pins;
+  for (const ConstraintItem *c : model.constraints()) pins.insert(c->name());
+  for (const ConstraintItem *c : model.constraints()) {
+    const std::string n = c->name();
+    if (n.size() <= 6 || n.compare(n.size() - 6, 6, ".angle") != 0) continue;
+    const std::string clamp = n.substr(0, n.size() - 6);
+    if (!pins.count(clamp + ".pin") || !dynamic_cast<const AngleDrive *>(&c->constraint())) continue;
+    items_.push_back({Kind::Moment, "clamp", clamp, c->firstRow() - model.numCoordinates()});
+  }
+}
+
+void DesignNumbers::update(double t, const std::vector<double> &outputs, const std::vector<double> &multipliers)
+{
+  if (outputs.empty() && multipliers.empty()) return; // not rank 0
+  for (Item &it : items_) {
+    double value;
+    if (it.kind == Kind::Moment) {
+      if (it.index >= (PetscInt)multipliers.size()) continue;
+      value = -multipliers[it.index];
+    } else {
+      if (it.index >= (PetscInt)outputs.size()) continue;
+      value = outputs[it.index];
+    }
+    // Tensions: signed extremes; moments and contact forces: magnitudes.
+    const double v = it.kind == Kind::Tension ? value : std::abs(value);
+    if (!it.seen) {
+      it.seen = true;
+      it.start = value;
+      it.peak = it.low = v;
+      it.peakTime = it.lowTime = t;
+      continue;
+    }
+    if (v > it.peak) it.peak = v, it.peakTime = t;
+    if (v < it.low) it.low = v, it.lowTime = t;
+  }
+}
+
+std::vector<std::pair<std::string, double>> DesignNumbers::attributes() const
+{
+  std::vector<std::pair<std::string, double>> out;
+  for (const Item &it : items_) {
+    if (!it.seen) continue;
+    const std::string p = "design." + it.group + "." + it.name + ".";
+    switch (it.kind) {
+    case Kind::Tension:
+      out.push_back({p + "static_tension_N", it.start});
+      out.push_back({p + "peak_tension_N", it.peak});
+      out.push_back({p + "peak_tension_time_s", it.peakTime});
+      out.push_back({p + "min_tension_N", it.low});
+      out.push_back({p + "min_tension_time_s", it.lowTime});
+      // Without a static tension (a slack start) the factors are not defined: NaN.
+      out.push_back({p + "dynamic_factor", it.start > 0 ? it.peak / it.start : std::nan("")});
+      out.push_back({p + "min_factor", it.start > 0 ? it.low / it.start : std::nan("")});
+      break;
+    case Kind::Moment:
+      out.push_back({p + "peak_root_moment_Nm", it.peak});
+      out.push_back({p + "peak_root_moment_time_s", it.peakTime});
+      out.push_back({p + "static_root_moment_Nm", std::abs(it.start)});
+      break;
+    case Kind::ContactForce:
+      out.push_back({p + "peak_normal_force_N", it.peak});
+      out.push_back({p + "peak_normal_force_time_s", it.peakTime});
+      break;
+    }
+  }
+  return out;
+}
+
+std::string DesignNumbers::report() const
+{
+  std::string text;
+  char line[400];
+  for (const Item &it : items_) {
+    if (!it.seen) continue;
+    switch (it.kind) {
+    case Kind::Tension:
+      if (it.start > 0)
+        std::snprintf(line, sizeof line,
+                      "  %s '%s': static tension %.6g N (t = 0), peak %.6g N at t = %.4g s (dynamic factor %.4f), "
+                      "minimum %.6g N at t = %.4g s (%.4f)\n",
+                      it.group.c_str(), it.name.c_str(), it.start, it.peak, it.peakTime, it.peak / it.start, it.low,
+                      it.lowTime, it.low / it.start);
+      else
+        std::snprintf(line, sizeof line,
+                      "  %s '%s': tension %.6g N at t = 0 (no static tension: no dynamic factor), peak %.6g N at "
+                      "t = %.4g s, minimum %.6g N at t = %.4g s\n",
+                      it.group.c_str(), it.name.c_str(), it.start, it.peak, it.peakTime, it.low, it.lowTime);
+      break;
+    case Kind::Moment:
+      std::snprintf(line, sizeof line, "  clamp '%s': peak root moment %.6g N m at t = %.4g s (%.6g N m at t = 0)\n",
+                    it.name.c_str(), it.peak, it.peakTime, std::abs(it.start));
+      break;
+    case Kind::ContactForce:
+      std::snprintf(line, sizeof line, "  joint '%s': peak normal force %.6g N at t = %.4g s\n", it.name.c_str(),
+                    it.peak, it.peakTime);
+      break;
+    }
+    text += line;
+  }
+  return text.empty() ? text : "design numbers (docs/output.md):\n" + text;
+}
+
+std::vector<double> DesignNumbers::state() const
+{
+  std::vector<double> out;
+  for (const Item &it : items_)
+    out.insert(out.end(), {it.seen ? 1.0 : 0.0, it.start, it.peak, it.peakTime, it.low, it.lowTime});
+  return out;
+}
+
+void DesignNumbers::restore(const std::vector<double> &values)
+{
+  if (values.size() != 6 * items_.size()) return; // another model or an older checkpoint: start afresh
+  for (std::size_t k = 0; k < items_.size(); ++k) {
+    const double *v = &values[6 * k];
+    Item &it = items_[k];
+    it.seen = v[0] != 0, it.start = v[1], it.peak = v[2], it.peakTime = v[3], it.low = v[4], it.lowTime = v[5];
+  }
+}
+
+} // namespace boomdyn
