@@ -170,19 +170,22 @@ struct Subspace {
     PetscFunctionReturn(0);
   }
 
-  // W^T V for the products W (symmetrized: K, D, M are symmetric).
-  PetscErrorCode project(const std::vector<PetscHandle<Vec>> &W, Eigen::MatrixXd *P) const
+  // V^T W for the products W, updated from column `from` on (the columns
+  // before it did not change: V only grows). Symmetric: K, D, M are.
+  PetscErrorCode project(const std::vector<PetscHandle<Vec>> &W, int from, Eigen::MatrixXd *P) const
   {
     const int p = (int)V.size();
-    const std::vector<Vec> basis = raw(V);
+    std::vector<Vec> basis = raw(V);
     std::vector<PetscScalar> dots(p);
     PetscFunctionBeginUser;
-    P->resize(p, p);
-    for (int j = 0; j < p; ++j) {
+    P->conservativeResize(p, p);
+    for (int j = from; j < p; ++j) {
       PetscCall(VecMDot(W[j], p, basis.data(), dots.data()));
       for (int i = 0; i < p; ++i) (*P)(i, j) = dots[i];
+      for (int i = 0; i < from; ++i) (*P)(j, i) = dots[i];
     }
-    *P = 0.5 * (*P + P->transpose()).eval();
+    const int n = p - from;
+    P->bottomRightCorner(n, n) = 0.5 * (P->bottomRightCorner(n, n) + P->bottomRightCorner(n, n).transpose()).eval();
     PetscFunctionReturn(0);
   }
 
@@ -325,7 +328,8 @@ PetscErrorCode DampedModeRefiner::refine(double t, Vec q, Vec lambda, Mat K, Mat
   }
   // The first-order change of the modes by the damping: T(i w) (phi + dx) = 0
   // gives (K - w^2 M) dx ~ -i w D phi, approximated with P.
-  for (const PetscHandle<Vec> &phi : modes) {
+  for (int k = 0; k < count && k < (int)modes.size(); ++k) { // the wanted ones; the guard modes need no correction
+    const PetscHandle<Vec> &phi = modes[k];
     PetscHandle<Vec> u;
     PetscCall(MatMult(D_, phi, rhs));
     PetscCall(precondition(rhs, &u, &ok));
@@ -351,11 +355,13 @@ PetscErrorCode DampedModeRefiner::refine(double t, Vec q, Vec lambda, Mat K, Mat
     PetscCall(VecDuplicate(modes[0], bestXi[k].address()));
   }
   std::vector<RitzPair> pairs; // the wanted pairs of the projected problem, continued across expansions
+  Eigen::MatrixXd Kp, Dp, Mp;  // the projected matrices, the first `projected` columns up to date
+  int projected = 0;
   for (int it = 1; ok && it <= maxIterations && (int)sub.V.size() <= maxSubspace; ++it) {
-    Eigen::MatrixXd Kp, Dp, Mp;
-    PetscCall(sub.project(sub.KV, &Kp));
-    PetscCall(sub.project(sub.DV, &Dp));
-    PetscCall(sub.project(sub.MV, &Mp));
+    PetscCall(sub.project(sub.KV, projected, &Kp));
+    PetscCall(sub.project(sub.DV, projected, &Dp));
+    PetscCall(sub.project(sub.MV, projected, &Mp));
+    projected = (int)sub.V.size();
     const bool found = projectedModes(Kp, Dp, Mp, count, &pairs);
     if (!found) break; // the full solve decides (and may report fewer)
     std::vector<double> residual(count);
