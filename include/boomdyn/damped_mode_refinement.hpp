@@ -44,8 +44,10 @@ public:
   // ||T(lambda) x|| / ||K x|| is about 1e-9 on the paper scene (the second
   // mode stalls at 3e-9 to 7e-9), and residuals near it make the expansion
   // noise: the iteration stops at the first subspace where all pairs pass,
-  // and keeps the best iterate when the residual grows.
-  double tolerance = 1e-8;
+  // and keeps the best iterate when the residual grows. Half the 1e-8 the
+  // tests demand: recomputed from the final vectors the residual differs
+  // from the iteration's by about the floor.
+  double tolerance = 5e-9;
   int maxIterations = 6;
   int maxSubspace = 48;
 

@@ -37,8 +37,9 @@ public:
   // When the residual stops decreasing (a round-off floor: low modes of the
   // extended booms stall near 1e-9), pairs at or below this are accepted
   // instead of paying a full solve (their eigenvalue error is of the order
-  // of the squared residual).
-  double floorTolerance = 1e-8;
+  // of the squared residual). Half the 1e-8 the tests demand: recomputed
+  // from the final vectors the residual differs by about the floor.
+  double floorTolerance = 5e-9;
   int maxIterations = 10;
 
   // A, B at the state and the factorization of A - target B (called by
