@@ -10,7 +10,9 @@
 #pragma once
 
 #include "boomdyn/assembler.hpp"
+#include "boomdyn/petsc_handle.hpp"
 
+#include <complex>
 #include <vector>
 
 namespace boomdyn {
@@ -23,6 +25,10 @@ struct DampedModalResult {
   // Real parts of the coordinate parts of the eigenvectors, gathered on rank 0
   // (empty elsewhere), max-norm 1 (as ModalResult::shapes).
   std::vector<std::vector<double>> shapes;
+  // With DampedModalOptions::keepVectors (always from refinement): the
+  // eigenvectors x = real + i imag (layout of the pencil's x, all ranks),
+  // of the eigenvalue with Im lambda > 0.
+  std::vector<PetscHandle<Vec>> real, imag;
 };
 
 struct DampedModalOptions {
@@ -38,6 +44,7 @@ struct DampedModalOptions {
   // scene with damping_ratio 0.02 at 1 Hz) and then met a pair with backward
   // error 1.5e-8.
   bool allowFewer = false;
+  bool keepVectors = false; // fill DampedModalResult::real, imag
 };
 
 // D at (t, q, lambda) into a matrix made by assembler.createMatrix(): the
@@ -45,6 +52,12 @@ struct DampedModalOptions {
 // constraint blocks. First-order states (LuGre z) keep zero rate and no
 // D entry: as in the symmetric pencil they are algebraic (infinite modes).
 PetscErrorCode assembleDamping(Assembler &assembler, double t, Vec q, Vec lambda, Mat D);
+
+// Appends the mode lambda, x = xr + i xi to *result: omega_d, omega, zeta,
+// the residual, the vector (keepVector) and the shape on rank 0 (the real
+// part after rotating the largest coordinate entry to the real axis).
+PetscErrorCode appendDampedMode(Assembler &assembler, std::complex<double> lambda, Vec xr, Vec xi, double residual,
+                                bool keepVector, DampedModalResult *result);
 
 // The `count` lowest damped modes (by |lambda|, the undamped-equivalent
 // frequency; for light damping the order of omega_d too) of the linearization

@@ -132,12 +132,53 @@ PetscErrorCode quadraticRayleighQuotient(Mat ops[3], Vec xr, Vec xi, std::comple
 
 } // namespace
 
+PetscErrorCode appendDampedMode(Assembler &assembler, std::complex<double> lambda, Vec xr, Vec xi, double residual,
+                                bool keepVector, DampedModalResult *result)
+{
+  PetscMPIInt rank;
+  std::vector<double> real, imag;
+  PetscFunctionBeginUser;
+  const double modulus = std::abs(lambda);
+  result->dampedOmega.push_back(std::abs(lambda.imag()));
+  result->omega.push_back(modulus);
+  result->dampingRatio.push_back(-lambda.real() / modulus);
+  result->residuals.push_back(residual);
+  if (keepVector) {
+    PetscHandle<Vec> r, i;
+    PetscCall(VecDuplicate(xr, r.address()));
+    PetscCall(VecCopy(xr, r));
+    PetscCall(VecDuplicate(xi, i.address()));
+    PetscCall(VecCopy(xi, i));
+    // One of the conjugate pair: the one with Im lambda > 0.
+    if (lambda.imag() < 0) PetscCall(VecScale(i, -1.0));
+    result->real.push_back(std::move(r));
+    result->imag.push_back(std::move(i));
+  }
+  PetscCallMPI(MPI_Comm_rank(assembler.comm(), &rank));
+  PetscCall(gatherToZero(xr, real));
+  PetscCall(gatherToZero(xi, imag));
+  if (rank == 0) {
+    // The phase is free: rotate the vector so that its largest entry is
+    // real, then keep the real part (independent of the rank count and of
+    // the complex scale of the vector).
+    const std::size_t nq = (std::size_t)assembler.model().numCoordinates();
+    std::size_t big = 0;
+    for (std::size_t i = 0; i < nq; ++i)
+      if (std::hypot(real[i], imag[i]) > std::hypot(real[big], imag[big])) big = i;
+    const double phase = std::atan2(imag[big], real[big]);
+    std::vector<double> shape(nq);
+    for (std::size_t i = 0; i < nq; ++i) shape[i] = real[i] * std::cos(phase) + imag[i] * std::sin(phase);
+    normalizeShape(shape);
+    result->shapes.push_back(std::move(shape));
+  }
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode solveDampedModes(Assembler &assembler, double t, Vec q, Vec lambda, int count,
                                 DampedModalResult *result, const DampedModalOptions &options)
 {
   PetscHandle<Mat> K, D, M;
-  PetscHandle<Vec> vr, vi, gr, gi;
-  PetscHandle<VecScatter> toZero;
+  PetscHandle<Vec> vr, vi;
   PetscHandle<PEP> pep;
   ST st;
   KSP ksp;
@@ -193,13 +234,8 @@ PetscErrorCode solveDampedModes(Assembler &assembler, double t, Vec q, Vec lambd
     nev = std::min(2 * finiteBound, nev + 2 * (count - (PetscInt)modes.size()) + 2);
   }
 
-  PetscMPIInt rank;
-  PetscCallMPI(MPI_Comm_rank(assembler.comm(), &rank));
   PetscCall(MatCreateVecs(K, vr.address(), nullptr));
   PetscCall(VecDuplicate(vr, vi.address()));
-  PetscCall(VecScatterCreateToZero(vr, toZero.address(), gr.address()));
-  PetscCall(VecDuplicate(gr, gi.address()));
-  const PetscInt nq = assembler.model().numCoordinates();
   *result = DampedModalResult{};
   for (int k = 0, found = 0; k < (int)modes.size() && found < count; ++k) {
     const Candidate &c = modes[k];
@@ -216,31 +252,11 @@ PetscErrorCode solveDampedModes(Assembler &assembler, double t, Vec q, Vec lambd
     // between 1 and 2 ranks (as in solveModes).
     std::complex<double> lambdaPair(c.re, c.im);
     PetscCall(quadraticRayleighQuotient(ops, vr, vi, &lambdaPair));
-    const Candidate refined{c.index, lambdaPair.real(), std::abs(lambdaPair.imag())};
-    const double modulus = std::hypot(refined.re, refined.im);
+    const double modulus = std::abs(lambdaPair);
     PetscCheck(err < 1e-8, assembler.comm(), PETSC_ERR_NOT_CONVERGED,
                "damped eigen-analysis: mode %d (%.6g rad/s) did not converge (backward error %.3g)", k + 1, modulus,
                (double)err);
-    result->dampedOmega.push_back(refined.im);
-    result->omega.push_back(modulus);
-    result->dampingRatio.push_back(-refined.re / modulus);
-    result->residuals.push_back(err);
-    std::vector<double> real, imag;
-    PetscCall(scatterValues(toZero, vr, gr, real));
-    PetscCall(scatterValues(toZero, vi, gi, imag));
-    if (rank == 0) {
-      // The phase is free: rotate the vector so that its largest entry is
-      // real, then keep the real part (independent of the rank count).
-      std::size_t big = 0;
-      for (std::size_t i = 0; i < (std::size_t)nq; ++i)
-        if (std::hypot(real[i], imag[i]) > std::hypot(real[big], imag[big])) big = i;
-      const double phase = std::atan2(imag[big], real[big]);
-      std::vector<double> shape(nq);
-      for (std::size_t i = 0; i < (std::size_t)nq; ++i)
-        shape[i] = real[i] * std::cos(phase) + imag[i] * std::sin(phase);
-      normalizeShape(shape);
-      result->shapes.push_back(std::move(shape));
-    }
+    PetscCall(appendDampedMode(assembler, lambdaPair, vr, vi, err, options.keepVectors, result));
   }
   PetscCall(PetscLogEventEnd(logEvents().eigen, 0, 0, 0, 0));
   PetscFunctionReturn(0);

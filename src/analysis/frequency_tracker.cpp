@@ -1,5 +1,6 @@
 #include "boomdyn/frequency_tracker.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -76,9 +77,12 @@ PetscErrorCode FrequencyTracker::analyze(double t, Vec q, Vec lambda, TrackedMod
   const double target = previous_ ? 0.5 * previousOmega2_ : ModalOptions{}.target;
   std::vector<double> omega2;
   bool refined = false;
+  pencilCurrent_ = false;
+  target_ = target;
   if (!fullSolve_ && previous_ && (int)basis_.size() >= count_) {
     RefinedModes r;
     PetscCall(refiner_.refine(t, q, lambda, target, count_, basis_, &r, &refined));
+    pencilCurrent_ = refiner_.factoredAtLastPrepare();
     if (refined) {
       omega2 = r.omega2;
     } else if (!fallbackReported_) {
@@ -124,6 +128,57 @@ PetscErrorCode FrequencyTracker::analyze(double t, Vec q, Vec lambda, TrackedMod
   out->index = pick;
   out->refined = refined;
   PetscCall(gatherShape(assembler_, previous_, &out->shape));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode FrequencyTracker::analyzeDamped(double t, Vec q, Vec lambda, TrackedModes *out, DampedModalResult *modes)
+{
+  DampedModalResult dm;
+  bool refined = false;
+  PetscFunctionBeginUser;
+  if (!fullSolve_ && !basis_.empty()) {
+    bool factored = pencilCurrent_;
+    if (!factored) PetscCall(refiner_.prepare(t, q, lambda, target_, &factored));
+    pencilCurrent_ = factored;
+    DampedRefinementInfo info;
+    if (factored)
+      PetscCall(dampedRefiner_.refine(t, q, lambda, refiner_.stiffness(), refiner_.mass(), refiner_.shiftedSolver(),
+                                      basis_, count_, &dm, &info, &refined));
+    if (!refined && !dampedFallbackReported_) {
+      dampedFallbackReported_ = true;
+      PetscCall(PetscPrintf(assembler_.comm(),
+                            "warning: frequency tracking: refining the damped modes at t = %g s did not converge "
+                            "(relative residual %.2g after %d projections, subspace %d); the full damped eigen-solve "
+                            "runs instead (said once)\n",
+                            t, info.worstResidual, info.iterations, info.subspace));
+    }
+  }
+  if (!refined) {
+    DampedModalOptions options;
+    options.allowFewer = true; // heavy damping: few oscillating modes (damped_eigen_solver.hpp)
+    options.keepVectors = modes != nullptr;
+    PetscCall(solveDampedModes(assembler_, t, q, lambda, count_, &dm, options));
+  }
+  out->damped = true;
+  out->dampedRefined = refined;
+  // No oscillating damped mode found: NaN in the file.
+  out->trackedDampedHz = out->trackedDampingRatio = std::nan("");
+  out->dampedMac = 0;
+  const auto dot = [](const std::vector<double> &a, const std::vector<double> &b) {
+    double d = 0;
+    for (std::size_t i = 0; i < std::min(a.size(), b.size()); ++i) d += a[i] * b[i];
+    return d;
+  };
+  for (std::size_t k = 0; k < dm.shapes.size(); ++k) { // rank 0 holds the shapes
+    const double ab = dot(dm.shapes[k], out->shape);
+    const double mac = ab * ab / (dot(dm.shapes[k], dm.shapes[k]) * dot(out->shape, out->shape));
+    if (mac > out->dampedMac) {
+      out->dampedMac = mac;
+      out->trackedDampedHz = dm.dampedOmega[k] / (2.0 * M_PI);
+      out->trackedDampingRatio = dm.dampingRatio[k];
+    }
+  }
+  if (modes) *modes = std::move(dm);
   PetscFunctionReturn(0);
 }
 

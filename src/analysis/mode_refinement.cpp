@@ -13,6 +13,7 @@ namespace boomdyn {
 PetscErrorCode ModeRefiner::prepare(double t, Vec q, Vec lambda, double target, bool *factored)
 {
   PetscFunctionBeginUser;
+  factored_ = false;
   if (!A_ || pattern_ != assembler_.patternVersion()) {
     // A contact point changed element: new matrices, and the solver forgets
     // its symbolic factorization (docs/petsc-notes.md trap 1).
@@ -41,7 +42,7 @@ PetscErrorCode ModeRefiner::prepare(double t, Vec q, Vec lambda, double target, 
   PCFailedReason reason;
   PetscCall(KSPGetPC(ksp_, &pc));
   PetscCall(PCGetFailedReason(pc, &reason));
-  *factored = reason == PC_NOERROR;
+  *factored = factored_ = reason == PC_NOERROR;
   PetscFunctionReturn(0);
 }
 
@@ -128,8 +129,15 @@ PetscErrorCode ModeRefiner::refine(double t, Vec q, Vec lambda, double target, i
       break;
     }
     // Stagnation at a round-off floor (a low mode of a stiff pencil): no use
-    // iterating on; the full solve decides.
-    if (it > 2 && worst > 0.5 * before) break;
+    // iterating on. Below floorTolerance the pairs are accepted, above it
+    // the full solve decides.
+    if (it > 2 && worst > 0.5 * before) {
+      if (worst <= floorTolerance) {
+        out->omega2.assign(theta.data(), theta.data() + count);
+        *converged = true;
+      }
+      break;
+    }
   }
   PetscCall(PetscLogEventEnd(logEvents().eigen, 0, 0, 0, 0));
   PetscFunctionReturn(0);

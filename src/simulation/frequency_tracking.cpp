@@ -23,8 +23,9 @@ PetscErrorCode FrequencyTracking::setUp()
 {
   PetscFunctionBeginUser;
   PetscCall(SlepcInitialize(nullptr, nullptr, nullptr, nullptr));
-  // -boom_tracking_full: a full eigen-solve at every analysis instead of
-  // refining the previous modes (the reference path; docs/model.md §5).
+  // -boom_tracking_full: a full eigen-solve (and for damped models a full
+  // PEP solve) at every analysis instead of refining the previous modes (the
+  // reference path; docs/model.md §5).
   tracker_ = std::make_unique<FrequencyTracker>(sim_.assembler(), sim_.scene().tracking.count,
                                                 sim_.options().trackingFullSolve);
   PetscFunctionReturn(0);
@@ -51,33 +52,14 @@ PetscErrorCode FrequencyTracking::track(const RunState &s, double h)
   PetscFunctionReturn(0);
 }
 
-// A full damped eigen-solve (docs/model.md §5, "Damped modes") per analysis;
-// the damped mode is the one whose shape (real part of the coordinate part)
-// has the largest MAC against the followed undamped shape.
+// The damped modes (docs/model.md §5, "Damped modes" and "Damped
+// refinement") at the state of the analysis just made; the damped mode is the
+// one whose shape (real part of the coordinate part) has the largest MAC
+// against the followed undamped shape (FrequencyTracker::analyzeDamped).
 PetscErrorCode FrequencyTracking::trackDamped(const RunState &s, TrackedModes *modes)
 {
-  DampedModalResult dm;
   PetscFunctionBeginUser;
-  DampedModalOptions options;
-  options.allowFewer = true; // heavy damping: few oscillating modes (damped_eigen_solver.hpp)
-  PetscCall(solveDampedModes(sim_.assembler(), s.t, s.q, s.lambda, sim_.scene().tracking.count, &dm, options));
-  modes->damped = true;
-  // No oscillating damped mode found: NaN in the file.
-  modes->trackedDampedHz = modes->trackedDampingRatio = std::nan("");
-  const auto dot = [](const std::vector<double> &a, const std::vector<double> &b) {
-    double d = 0;
-    for (std::size_t i = 0; i < std::min(a.size(), b.size()); ++i) d += a[i] * b[i];
-    return d;
-  };
-  for (std::size_t k = 0; k < dm.shapes.size(); ++k) { // rank 0 holds the shapes
-    const double ab = dot(dm.shapes[k], modes->shape);
-    const double mac = ab * ab / (dot(dm.shapes[k], dm.shapes[k]) * dot(modes->shape, modes->shape));
-    if (mac > modes->dampedMac) {
-      modes->dampedMac = mac;
-      modes->trackedDampedHz = dm.dampedOmega[k] / (2.0 * M_PI);
-      modes->trackedDampingRatio = dm.dampingRatio[k];
-    }
-  }
+  PetscCall(tracker_->analyzeDamped(s.t, s.q, s.lambda, modes));
   PetscFunctionReturn(0);
 }
 
