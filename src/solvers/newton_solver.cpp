@@ -7,7 +7,8 @@
 
 namespace boomdyn {
 
-PetscErrorCode NewtonSolver::setUp(Assembler &assembler, const char *prefix, PetscInt maxIterations)
+PetscErrorCode NewtonSolver::setUp(Assembler &assembler, const char *prefix, PetscInt maxIterations,
+                                   bool reuseByDefault)
 {
   KSP ksp;
   SNESLineSearch ls;
@@ -38,6 +39,7 @@ PetscErrorCode NewtonSolver::setUp(Assembler &assembler, const char *prefix, Pet
   PetscCall(useDirectSolver(ksp));
 
   PetscBool schur = PETSC_FALSE, blockTest = PETSC_TRUE;
+  reuse_.enabled = reuseByDefault;
   PetscCall(readNewtonOptions(assembler.comm(), prefix, &reuse_, &schur, &blockTest));
   if (schur) PetscCall(useSchurComplementSolver(ksp));
   blockTest_ = blockTest;
