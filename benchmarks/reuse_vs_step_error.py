@@ -47,7 +47,10 @@ def scene_step(scene):
 def run(boomdyn, scene, out, options):
     cmd = [str(boomdyn), str(scene), "-o", str(out), "-boom_overwrite", "-boom_quiet", "-boom_allow_unused"] + options
     env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
-    r = subprocess.run(cmd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, env=env)
+    for _ in range(3):  # Open MPI's session directory under /tmp can vanish under a parallel cleanup: retry
+        r = subprocess.run(cmd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, env=env)
+        if r.returncode == 0 or b"orte_init failed" not in r.stdout:
+            break
     if r.returncode != 0:
         raise RuntimeError(" ".join(cmd) + " failed:\n" + r.stdout.decode("utf-8", "replace"))
     return dict((k, v) for k, v in digest.extract(out))

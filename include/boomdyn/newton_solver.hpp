@@ -11,7 +11,7 @@
 // step size or another kind of solve), when the sparsity pattern changes, or
 // when it is older than a given number of solves. A convergence by a small
 // update with a kept matrix while the residual stagnates is accepted only
-// after a Newton step; a solve in which a kept matrix made the residual grow,
+// after a Newton step, unless the update is at round-off (100 eps |q|); a solve in which a kept matrix made the residual grow,
 // or that fails, is redone by full Newton from the same initial guess, so
 // reuse never turns a step full Newton solves into a rejected one.
 #pragma once
