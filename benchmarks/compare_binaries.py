@@ -12,10 +12,13 @@ from -log_view, the time in the time steps (BoomStep), the eigen-analyses
       [--repeat 3] [--cases paper paper_notrack cantilever startup] [--elements 8 32 128 512 2048] [--out FILE.md]
 
 Cases: `paper` (inputs/paper_extraction.yaml with its tracking every 10 ms),
-`paper_notrack` (the same, -boom_tracking_interval 0), `cantilever` (the
-2 m cantilever of docs/performance.md, 1000 steps, N elements; default
-options of each binary and both with -boom_jacobian_reuse 1), `startup` (the
-cantilever with 8 elements, one step).
+`paper_notrack` (the same, -boom_tracking_interval 0), `pads` and
+`rope_pair` (inputs/paper_extraction_pads.yaml, paper_extraction_rope_pair.yaml,
+as they are), `interval` (the paper scene with tracking every 1, 10 and 100 ms),
+`cantilever` (the 2 m cantilever of docs/performance.md, 1000 steps, N
+elements; default options of each binary, both with -boom_jacobian_reuse 1 and
+both with -boom_jacobian_reuse 0), `startup` (the cantilever with 8 elements,
+one step).
 """
 import argparse
 import os
@@ -67,11 +70,20 @@ def cases(names, elements):
         out.append(("paper extraction, tracking 10 ms", [paper], []))
     if "paper_notrack" in names:
         out.append(("paper extraction, no tracking", [paper, "-boom_tracking_interval", "0"], []))
+    for name in ("pads", "rope_pair"):
+        if name in names:
+            scene = os.path.join(ROOT, "inputs", "paper_extraction_%s.yaml" % name)
+            out.append(("paper extraction with %s" % name.replace("_", " "), [scene], []))
+    if "interval" in names:
+        for interval in ("0.001", "0.01", "0.1"):
+            out.append(("paper extraction, tracking every %g ms" % (1000 * float(interval)),
+                        [paper, "-boom_tracking_interval", interval], []))
     if "cantilever" in names:
         for n in elements:
             base = [cantilever, "-boom_elements", str(n), "-boom_state_interval", "0"]
             out.append(("cantilever %d el., defaults" % n, base, []))
             out.append(("cantilever %d el., both with reuse" % n, base + ["-boom_jacobian_reuse", "1"], []))
+            out.append(("cantilever %d el., both full Newton" % n, base + ["-boom_jacobian_reuse", "0"], []))
     return out
 
 

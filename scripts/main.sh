@@ -7,9 +7,9 @@ scripts/install-deps.sh
 scripts/build.sh
 scene=inputs/paper_extraction.yaml
 mkdir -p out
-# Modified Newton (-boom_jacobian_reuse): the same answers to the Newton
-# tolerance, about 2x faster on this scene (docs/performance.md).
-./build/boomdyn "$scene" -o out/main.h5 -boom_overwrite -boom_jacobian_reuse "$@"
+# Default options: modified Newton (Jacobian reuse) is the default since
+# issue 18 (README "Defaults"; -boom_jacobian_reuse 0 for full Newton).
+./build/boomdyn "$scene" -o out/main.h5 -boom_overwrite "$@"
 /usr/bin/python3 postprocess/plot_run.py out/main.h5 -o out/main_plots
 /usr/bin/python3 postprocess/plot_frequency.py out/main.h5 -o out/main_plots/frequency.png --paper
 echo "main: results in out/main.h5, plots in out/main_plots/"

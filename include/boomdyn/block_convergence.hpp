@@ -43,6 +43,9 @@ public:
                       SNESConvergedReason *reason);
   // The block that kept the last unconverged iteration going (for -info).
   int lastHolder() const { return lastHolder_; }
+  // Whether the last increment of every block was below the round-off of
+  // the increments (100 eps |q|): the iterate cannot get more accurate.
+  bool incrementAtRoundoff() const { return incrementAtRoundoff_; }
 
 private:
   MPI_Comm comm_ = MPI_COMM_NULL;
@@ -52,6 +55,7 @@ private:
   std::array<double, NumBlocks> initialResidual_{};
   std::array<double, NumBlocks> previousIncrement_{};
   int lastHolder_ = -1;
+  bool incrementAtRoundoff_ = false;
 };
 
 } // namespace boomdyn

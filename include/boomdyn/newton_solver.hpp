@@ -11,7 +11,7 @@
 // step size or another kind of solve), when the sparsity pattern changes, or
 // when it is older than a given number of solves. A convergence by a small
 // update with a kept matrix while the residual stagnates is accepted only
-// after a Newton step; a solve in which a kept matrix made the residual grow,
+// after a Newton step, unless the update is at round-off (100 eps |q|); a solve in which a kept matrix made the residual grow,
 // or that fails, is redone by full Newton from the same initial guess, so
 // reuse never turns a step full Newton solves into a rejected one.
 #pragma once
@@ -30,7 +30,9 @@ struct PetscDestroyer<SNES> {
 };
 
 struct JacobianReuse {
-  bool enabled = false;
+  // On by default (README "Defaults"; docs/performance.md: the moves of the
+  // results against full Newton are far below each scene's time-step error).
+  bool enabled = true;
   // Rebuild when |F_k| / |F_{k-1}| exceeds this (a stale matrix contracts slowly).
   double refreshRatio = 0.25;
   // Rebuild after this many solves with one matrix (0: no limit).
@@ -57,8 +59,10 @@ public:
   NewtonSolver &operator=(const NewtonSolver &) = delete;
 
   // prefix may be null (then -snes_monitor etc. apply directly). Reads
-  // -boom_jacobian_reuse, -boom_jacobian_refresh_ratio, -boom_jacobian_max_age.
-  PetscErrorCode setUp(Assembler &assembler, const char *prefix, PetscInt maxIterations);
+  // -boom_jacobian_reuse, -boom_jacobian_refresh_ratio, -boom_jacobian_max_age;
+  // reuseByDefault is the value of -boom_jacobian_reuse when it is not given
+  // (dynamics: on; statics: off, a few load steps where reuse saves nothing).
+  PetscErrorCode setUp(Assembler &assembler, const char *prefix, PetscInt maxIterations, bool reuseByDefault = true);
   // Solve from the initial guess in x; the solution overwrites x.
   PetscErrorCode solve(Vec x, PetscInt *iterations, SNESConvergedReason *reason);
   // The next solve starts with a fresh Jacobian.

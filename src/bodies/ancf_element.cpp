@@ -347,10 +347,18 @@ double dampingForce(const Section &sec, double l, const Vec8 &e, const Vec8 &edo
     const double K = cross(r1, r2) * iJ2;
     const double epsdot = r1.dot(r1d);
     const double Kdot = (cross(r1d, r2) + cross(r1, r2d) - 2.0 * K * epsdot) * iJ2;
+    power += ca * epsdot * epsdot + cb * Kdot * Kdot;
+    if (!Kq && !Dv) {
+      // Force only (residuals, energy diagnostics): the same sum per node
+      // block, s1_k u1 - s2_k u2, without forming g_e and g_K as 8-vectors.
+      const double bK = cb * Kdot * iJ2;
+      const Vec2 u1 = (ca * epsdot) * r1 + bK * (rotCW(r2) - (2.0 * K) * r1), u2 = bK * rotCW(r1);
+      for (int k = 0; k < 4; ++k) fl.segment<2>(2 * k) += s1[k] * u1 - s2[k] * u2;
+      continue;
+    }
     const Vec8 gE = expand(s1, r1);
     const Vec8 gK = (expand(s1, rotCW(r2)) - expand(s2, rotCW(r1)) - 2.0 * K * gE) * iJ2;
     fl += (ca * epsdot) * gE + (cb * Kdot) * gK;
-    power += ca * epsdot * epsdot + cb * Kdot * Kdot;
     if (Dv) Dv->noalias() += ca * gE * gE.transpose() + cb * gK * gK.transpose();
     if (!Kq) continue;
     const Vec8 hE = expand(s1, r1d);

@@ -86,6 +86,7 @@ PetscErrorCode BlockConvergence::test(PetscInt it, Vec x, Vec dx, Vec F, PetscRe
     *reason = SNES_CONVERGED_FNORM_ABS;
     PetscFunctionReturn(0);
   }
+  incrementAtRoundoff_ = false;
   if (it == 0) {
     for (int b = 0; b < NumBlocks; ++b) initialResidual_[b] = all[FMAX + b];
     previousIncrement_.fill(0.0);
@@ -96,6 +97,7 @@ PetscErrorCode BlockConvergence::test(PetscInt it, Vec x, Vec dx, Vec F, PetscRe
   const double roundoff = 100 * std::numeric_limits<double>::epsilon() * std::sqrt(all[X2 + Bodies] + all[X2 + Slacks]);
   bool allResiduals = true;
   lastHolder_ = -1;
+  incrementAtRoundoff_ = true;
   std::array<double, NumBlocks> increments{};
   for (int b = 0; b < NumBlocks; ++b) {
     // The size of the block's increment, for the friction states relative
@@ -110,6 +112,7 @@ PetscErrorCode BlockConvergence::test(PetscInt it, Vec x, Vec dx, Vec F, PetscRe
     const double theta = it > 1 && previousIncrement_[b] > 0 ? increments[b] / previousIncrement_[b] : 1.0;
     const double left = theta < 1 ? theta / (1 - theta) * increments[b] : increments[b];
     const double step = std::sqrt(all[D2 + b]);
+    incrementAtRoundoff_ = incrementAtRoundoff_ && step <= roundoff;
     const bool increment = step <= roundoff || (b == FrictionStates ? left <= stol : left <= stol * std::sqrt(all[X2 + b]));
     allResiduals = allResiduals && residual;
     if (!residual && !increment && lastHolder_ < 0) {

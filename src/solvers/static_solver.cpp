@@ -14,7 +14,7 @@ PetscErrorCode StaticSolver::setUp()
   for (const auto &b : assembler_.model().bodies()) structureSize_ = std::max(structureSize_, b->length());
   PetscCall(assembler_.createVector(lambda_.address()));
   PetscCall(assembler_.createVector(backup_.address()));
-  PetscCall(newton_.setUp(assembler_, "static_", 50));
+  PetscCall(newton_.setUp(assembler_, "static_", 50, false));
   PetscFunctionReturn(0);
 }
 
