@@ -86,8 +86,9 @@ public:
   Vec accelerations() const { return qdd_; }
   // Multipliers (unscaled, SI units) in the last nlambda entries.
   Vec multipliers() const { return lambda_; }
-  // Context for diagnostics at the current state (energy, violation).
-  PetscErrorCode diagnostics(EnergyParts *energy, PetscReal *violation);
+  // Context for diagnostics at the current state (energy, violation); with
+  // rightLimit false, as the step that landed on t_ saw it (before a jump at t_).
+  PetscErrorCode diagnostics(EnergyParts *energy, PetscReal *violation, bool rightLimit = true);
   NewtonSolver &newton() { return newton_; }
   // Adaptive steps (-boom_adaptive_tol): a converged step whose error
   // estimate exceeds tol is not taken (result.errorRejected). 0: off.

@@ -42,6 +42,7 @@ PetscErrorCode GeneralizedAlpha::setUp(PetscInt maxNewton)
     hasDrives_ = hasDrives_ || c->constraint().dependsOnTime();
     c->constraint().velocityBreakpoints(breakpoints_);
   }
+  for (const auto &item : assembler_.model().items()) item->breakpoints(breakpoints_); // winches, releases
   std::sort(breakpoints_.begin(), breakpoints_.end());
   breakpoints_.erase(std::unique(breakpoints_.begin(), breakpoints_.end()), breakpoints_.end());
   PetscReal stiffness;
@@ -122,6 +123,7 @@ void GeneralizedAlpha::setAccelerationLevelContext(bool velocityLevel)
   newton_.ctx.sigma = massScale_;
   newton_.ctx.accelerationLevel = true;
   newton_.ctx.velocityLevel = velocityLevel;
+  newton_.ctx.rightLimit = true; // the state at t_ has passed any jump at t_ (a released mass is gone)
 }
 
 PetscErrorCode GeneralizedAlpha::consistentAccelerations()
@@ -209,6 +211,14 @@ PetscErrorCode GeneralizedAlpha::stepToBreakpoint(StepResult *result)
              t_);
   PetscCall(advance(tb - t_, tb, result));
   if (!result->converged) PetscFunctionReturn(0);
+  // Items whose value jumps at tb (a released mass) change the energy at
+  // fixed q and v: the energy they take out (or bring in) counts as the
+  // work of the event, like the drives' impulses below.
+  EnergyParts left, right;
+  PetscReal violation;
+  PetscCall(diagnostics(&left, &violation, false));
+  PetscCall(diagnostics(&right, &violation, true));
+  impulseWork_ += (right.kinetic + right.strain + right.potential) - (left.kinetic + left.strain + left.potential);
   PetscCall(projectVelocities());
   PetscCall(consistentAccelerations());
   result->restarted = true;
@@ -343,11 +353,12 @@ PetscErrorCode GeneralizedAlpha::restore(const StateReader &in)
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode GeneralizedAlpha::diagnostics(EnergyParts *energy, PetscReal *violation)
+PetscErrorCode GeneralizedAlpha::diagnostics(EnergyParts *energy, PetscReal *violation, bool rightLimit)
 {
   PetscFunctionBeginUser;
   AssemblyContext ctx;
   ctx.t = t_;
+  ctx.rightLimit = rightLimit;
   ctx.kin = {1.0, 0.0, 0.0};
   // q from q_ itself (cQ = 1, qc = 0), v from v_ (cV = 0, vc = v_). Only
   // driven constraints read multipliers here (their power): for them, a copy
@@ -355,12 +366,13 @@ PetscErrorCode GeneralizedAlpha::diagnostics(EnergyParts *energy, PetscReal *vio
   PetscCall(assembler_.setOffsets(nullptr, v_, nullptr));
   if (!hasDrives_) {
     PetscCall(assembler_.diagnostics(ctx, q_, energy, violation));
+    if (energy) energy->impulseWork = impulseWork_;
     PetscFunctionReturn(0);
   }
   PetscCall(VecCopy(q_, qp_));
   PetscCall(assembler_.copyMultipliers(lambda_, qp_, 1.0));
   PetscCall(assembler_.diagnostics(ctx, qp_, energy, violation));
-  energy->impulseWork = impulseWork_;
+  if (energy) energy->impulseWork = impulseWork_;
   PetscFunctionReturn(0);
 }
 

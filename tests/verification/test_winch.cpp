@@ -1,0 +1,141 @@
+// The winch on the elastic rope (docs/model.md §7.1) end to end: a 10 kg
+// body hangs at rest on a 1 m rope (EA = 1e5 N, pretensioned with its
+// weight) from a fixed ceiling; the winch hoists at v = 0.2 m/s from
+// t0 = 0.1 s to t1 = 0.6 s (a ramp of the paid-out length: the winch speed
+// jumps at both ends, two breakpoints of the integrator).
+//  - The energy balance with the winch power closes: E(t) - E(0) = W_winch
+//    (rho_inf = 1, no damping), to 1e-3 of W_winch.
+//  - Massless-rope limit of a speed jump: the body's response to the
+//    sudden hoisting is u(tau) = v (tau - sin(w tau)/w) (w^2 = k/m, k =
+//    EA/L0), so the tension T = m g + v sqrt(k m) sin(w tau) peaks at
+//    m g + v sqrt(k m) a quarter period after the jump (the lift-off formula
+//    with the ground replaced by the body's own equilibrium), to 2 % (the
+//    peak of the first half period; k = EA/L0(t) of the paid-out rope
+//    there; later peaks grow with k as the rope gets shorter).
+//  - Steps land on both breakpoints (the events of the restart are exact).
+#include "support.hpp"
+
+#include <cmath>
+
+using namespace boomdyn;
+using namespace boomdyn::testing;
+
+namespace {
+
+constexpr double g = 9.81, m = 10.0, EA = 1.0e5, v = 0.2, t0 = 0.1, t1 = 0.6;
+
+std::string winchScene(double dt, double tEnd)
+{
+  return R"(
+name: winch-hoist
+analysis: dynamic
+gravity: [0, -9.81]
+bodies:
+  - {name: ceiling, type: rigid, length: 0.2, origin: [-0.1, 0], section: {rhoA: 1}}
+  - {name: bob, type: rigid, length: 0.1, origin: [-0.05, -1.0], section: {rhoA: 100}}
+constraints:
+  - {type: clamp, body: ceiling, at: start}
+  - {type: angle_drive, body: bob, at: 0.05, angle: 0}
+  - {type: elastic_rope, name: hoist, from: ceiling, from_at: 0.1, to: bob, to_at: 0.05, EA: 1.0e5,
+     pretension: 98.1, winch: {type: ramp, t0: 0.1, t1: 0.6, from: 0, to: -0.1}}
+dynamic: {t_end: )" + std::to_string(tEnd) +
+         ", dt: " + std::to_string(dt) + R"(, rho_inf: 1.0}
+)";
+}
+
+} // namespace
+
+TEST(WinchVerification, HoistingJumpAndEnergyBalance)
+{
+  PetscMPIInt ranks;
+  MPI_Comm_size(PETSC_COMM_WORLD, &ranks);
+  if (ranks > 1) GTEST_SKIP() << "thousands of steps of a 6-coordinate model; 2 ranks: mpi2 winch run";
+  const double dt = 1e-4;
+  const DynamicHistory run = runDynamic(parseScene(winchScene(dt, 0.75), "winch-hoist.yaml"));
+  ASSERT_TRUE(run.summary.completed) << run.summary.failure;
+  ASSERT_TRUE(run.outcome.hasEnergyBalance);
+  PetscMPIInt rank;
+  MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
+  if (rank != 0) return;
+  ASSERT_EQ(run.outputs.front().size(), 5u); // tension, length, stretch, payout, winch_power
+  const double L0 = 1.0 / (1 + m * g / EA), w = std::sqrt(EA / L0 / m), tPeak = t0 + 0.5 * M_PI / w;
+  const double k = EA / (L0 - v * (tPeak - t0)), peakRef = m * g + v * std::sqrt(k * m);
+  double peak = 0;
+  bool landed0 = false, landed1 = false;
+  for (std::size_t s = 0; s < run.time.size(); ++s) {
+    if (run.time[s] < t0 + M_PI / w) peak = std::max(peak, run.outputs[s][0]);
+    landed0 = landed0 || std::abs(run.time[s] - t0) < 1e-12;
+    landed1 = landed1 || std::abs(run.time[s] - t1) < 1e-12;
+  }
+  const double Wwinch = run.outcome.inputWork, excess = run.outcome.energyExcess;
+  const double lift = m * g * 0.1; // the potential energy the winch gives the body (kinetic ~0 at the end)
+  PetscPrintf(PETSC_COMM_SELF,
+              "  winch: peak tension %.3f N vs m g + v sqrt(k m) = %.3f N (rel. %.2e); payout at the end %.6f m; "
+              "winch work %.6f J (m g dh = %.6f J, + the oscillation left by the two jumps), energy excess %.3e J "
+              "(%.2e of the work)\n",
+              peak, peakRef, std::abs(peak / peakRef - 1), run.outputs.back()[3], Wwinch, lift, excess,
+              std::abs(excess) / Wwinch);
+  EXPECT_TRUE(landed0 && landed1) << "steps land on the winch's speed jumps";
+  EXPECT_NEAR(run.outputs.back()[3], -0.1, 1e-12);
+  EXPECT_NEAR(peak, peakRef, 0.02 * peakRef);
+  // The oscillation each speed jump leaves has the energy m v^2 / 2: at most 4x that remains.
+  EXPECT_GT(Wwinch, lift);
+  EXPECT_LT(Wwinch, lift + 4 * 0.5 * m * v * v);
+  EXPECT_LT(std::abs(excess), 1e-3 * Wwinch);
+}
+
+// Quick release: a payload (rigid body 40 kg + point masses 40 kg and
+// Delta m = 20 kg on its axis, m = 100 kg) hangs at rest on an elastic rope
+// (EA = 1e6 N, 2 m, pretensioned with its weight); at t = 0.1 s Delta m is
+// released. The remaining mass m - Delta m starts at rest with the rope
+// force m g: it oscillates about (m - Delta m) g with the amplitude Delta m g,
+// so the smallest rope force is (m - 2 Delta m) g (no damping, rho_inf = 1),
+// to 2 %; the event 'release' is written at 0.1 s and the step lands there.
+TEST(WinchVerification, QuickReleaseSmallestRopeForce)
+{
+  PetscMPIInt ranks;
+  MPI_Comm_size(PETSC_COMM_WORLD, &ranks);
+  if (ranks > 1) GTEST_SKIP() << "a 6-coordinate model: 2 ranks are tested by the mpi2 winch run";
+  const double mTotal = 100.0, dm = 20.0;
+  const DynamicHistory run = runDynamic(parseScene(R"(
+name: quick-release
+analysis: dynamic
+gravity: [0, -9.81]
+bodies:
+  - {name: ceiling, type: rigid, length: 0.2, origin: [-0.1, 0], section: {rhoA: 1}}
+  - {name: payload, type: rigid, length: 0.4, origin: [-0.2, -2.0], section: {rhoA: 100}}
+constraints:
+  - {type: clamp, body: ceiling, at: start}
+  - {type: elastic_rope, name: hoist, from: ceiling, from_at: 0.1, to: payload, to_at: 0.2, EA: 1.0e6,
+     pretension: 981}
+masses:
+  - {name: ballast, body: payload, at: 0.2, mass: 40}
+  - {name: part, body: payload, at: 0.2, mass: 20, release_at: 0.1}
+dynamic: {t_end: 0.3, dt: 1.0e-4, rho_inf: 1.0}
+)",
+                                                   "quick-release.yaml"));
+  ASSERT_TRUE(run.summary.completed) << run.summary.failure;
+  PetscMPIInt rank;
+  MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
+  if (rank != 0) return;
+  double before = 1e300, after = 1e300, beforeMax = 0;
+  bool landed = false;
+  for (std::size_t s = 0; s < run.time.size(); ++s) {
+    if (run.time[s] < 0.1 - 1e-12) before = std::min(before, run.outputs[s][0]), beforeMax = std::max(beforeMax, run.outputs[s][0]);
+    else if (run.time[s] > 0.1 + 1e-12) after = std::min(after, run.outputs[s][0]);
+    landed = landed || std::abs(run.time[s] - 0.1) < 1e-12;
+  }
+  const double ref = (mTotal - 2 * dm) * g;
+  PetscPrintf(PETSC_COMM_SELF,
+              "  quick release: rope force before %.4f ... %.4f N (m g = %.4f N); smallest after %.4f N vs "
+              "(m - 2 dm) g = %.4f N (rel. %.2e); energy excess %.2e J of %.3e J involved\n",
+              before, beforeMax, mTotal * g, after, ref, std::abs(after / ref - 1), run.outcome.energyExcess,
+              run.outcome.energyInvolved);
+  EXPECT_TRUE(landed);
+  EXPECT_NEAR(before, mTotal * g, 1e-6 * mTotal * g); // at rest before the release
+  EXPECT_NEAR(after, ref, 0.02 * ref);
+  ASSERT_EQ(run.events.size(), 1u);
+  EXPECT_EQ(run.events[0].kind, "release");
+  EXPECT_DOUBLE_EQ(run.events[0].t, 0.1);
+  EXPECT_LT(std::abs(run.outcome.energyExcess), 1e-6 * run.outcome.energyInvolved); // the released energy is counted
+}
