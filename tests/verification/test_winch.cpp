@@ -139,3 +139,73 @@ dynamic: {t_end: 0.3, dt: 1.0e-4, rho_inf: 1.0}
   EXPECT_DOUBLE_EQ(run.events[0].t, 0.1);
   EXPECT_LT(std::abs(run.outcome.energyExcess), 1e-6 * run.outcome.energyInvolved); // the released energy is counted
 }
+
+// Lift-off: a 10 kg payload rests on the ground (ground_contact, k_g =
+// 1e9 N/m, no damping, at its static compression) under a just-taut rope of
+// EA = 1e5 N and 1 m; at t0 = 0.05 s the winch starts hoisting at v = 0.2 m/s
+// (a speed jump). Massless-rope limit: the rope force grows as k v tau
+// until it carries the weight (lift-off at tau1 = m g / (k v), event
+// lift_off; the exact time with the ground spring is derived below), then
+// T = m g + v sqrt(k m) sin(w tau'), w^2 = k/m: the peak
+// rope force m g + v sqrt(k m) (k = EA/L0 of the paid-out rope at the
+// peak), to 2 %. h = 2e-5 s resolves the ground's 1e4 rad/s (w h = 0.2).
+TEST(WinchVerification, LiftOffPeakRopeForce)
+{
+  PetscMPIInt ranks;
+  MPI_Comm_size(PETSC_COMM_WORLD, &ranks);
+  if (ranks > 1) GTEST_SKIP() << "a 6-coordinate model: 2 ranks are tested by the mpi2 winch run";
+  const double kg = 1e9, y0 = -1.0 - m * g / kg; // the payload's axis at its static compression
+  char text[1600];
+  std::snprintf(text, sizeof text, R"(
+name: lift-off
+analysis: dynamic
+gravity: [0, -9.81]
+bodies:
+  - {name: ceiling, type: rigid, length: 0.2, origin: [-0.1, 0], section: {rhoA: 1}}
+  - {name: payload, type: rigid, length: 0.1, origin: [-0.05, %.17g], section: {rhoA: 100}}
+constraints:
+  - {type: clamp, body: ceiling, at: start}
+  - {type: angle_drive, body: payload, at: 0.05, angle: 0}
+  - {type: elastic_rope, name: hoist, from: ceiling, from_at: 0.1, to: payload, to_at: 0.05, EA: 1.0e5,
+     length: %.17g, winch: {type: ramp, t0: 0.05, t1: 1.05, from: 0, to: -0.2}}
+  - {type: ground_contact, name: ground, body: payload, at: 0.05, level: -1.0, stiffness: 1.0e9}
+dynamic: {t_end: 0.1, dt: 2.0e-5, rho_inf: 1.0}
+)",
+                y0, -y0);
+  const DynamicHistory run = runDynamic(parseScene(text, "lift-off.yaml"));
+  ASSERT_TRUE(run.summary.completed) << run.summary.failure;
+  PetscMPIInt rank;
+  MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
+  if (rank != 0) return;
+  const double L0 = -y0, k0 = EA / L0, t0 = 0.05, tau1 = m * g / (k0 * v), w = std::sqrt(k0 / m);
+  // On the ground the payload is a mass between the ground spring k_g and
+  // the rope stretched at the rate v: y = k v (tau / K - sin(W tau) / (K W)),
+  // K = k + k_g, W^2 = K / m (rise above the rest position), so the ground
+  // force m g - k_g y reaches zero a little before tau1 (its oscillation of
+  // amplitude k_g k v / (K^2 W) ~ 2 N from the speed jump): the lift-off time.
+  const double K = k0 + kg, W = std::sqrt(K / m);
+  double lo = 0.5 * tau1, hi = 1.5 * tau1;
+  for (int it = 0; it < 200; ++it) {
+    const double mid = 0.5 * (lo + hi);
+    const double y = k0 * v * (mid / K - std::sin(W * mid) / (K * W));
+    ((m * g - kg * y > 0) ? lo : hi) = mid;
+  }
+  const double liftRef = t0 + 0.5 * (lo + hi);
+  const double tPeak = t0 + tau1 + 0.5 * M_PI / w, k = EA / (L0 - v * (tPeak - t0));
+  const double peakRef = m * g + v * std::sqrt(k * m);
+  double peak = 0, groundBefore = 0;
+  for (std::size_t s = 0; s < run.time.size(); ++s) {
+    peak = std::max(peak, run.outputs[s][0]);
+    if (run.time[s] < t0) groundBefore = std::max(groundBefore, std::abs(run.outputs[s][5] - m * g));
+  }
+  double liftOff = -1;
+  for (const TypeEvent &e : run.events)
+    if (e.kind == "lift_off" && liftOff < 0) liftOff = e.t;
+  PetscPrintf(PETSC_COMM_SELF,
+              "  lift-off: at %.7f s (two springs: %.7f s; rigid ground: %.7f s); peak rope force %.3f N vs "
+              "m g + v sqrt(k m) = %.3f N (rel. %.2e); ground force at rest within %.1e N of m g\n",
+              liftOff, liftRef, t0 + tau1, peak, peakRef, std::abs(peak / peakRef - 1), groundBefore);
+  EXPECT_LT(groundBefore, 1e-6 * m * g);
+  EXPECT_NEAR(liftOff, liftRef, 2e-3 * tau1);
+  EXPECT_NEAR(peak, peakRef, 0.02 * peakRef);
+}
