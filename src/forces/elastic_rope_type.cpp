@@ -41,6 +41,13 @@ void buildElasticRope(const ComponentSpec &spec, ModelBuilder &b)
   std::vector<RopePath::Point> points{{&b.body(spec.text("from")), spec.number("from_at")}};
   for (const char *pulley : {"pulley", "pulley2"})
     if (spec.has(pulley)) points.push_back({&b.body(spec.text(pulley)), spec.number(std::string(pulley) + "_at")});
+  if (spec.has("pulleys")) { // the list form: any number of sheaves, in the order the rope runs over them
+    const ComponentSpec &list = spec.map("pulleys");
+    for (std::size_t i = 0; list.has(std::to_string(i)); ++i) {
+      const ComponentSpec &sheave = list.map(std::to_string(i));
+      points.push_back({&b.body(sheave.text("body")), sheave.number("at")});
+    }
+  }
   points.push_back({&b.body(spec.text("to")), spec.number("to_at")});
   RopePath path(points);
   std::vector<PetscInt> dofs;
@@ -106,13 +113,28 @@ void buildElasticRope(const ComponentSpec &spec, ModelBuilder &b)
 
 } // namespace
 
+// One sheave of the list form `pulleys: [{body, at}, ...]`.
+const TypeSchema &sheaveSchema()
+{
+  static const TypeSchema schema = [] {
+    TypeSchema s;
+    s.section = "constraints";
+    s.type = "sheave";
+    s.summary = "one point pulley (sheave) of the list `pulleys`, in the order the rope runs over them";
+    s.keys = {bodyKey("body", "body that carries the sheave"), atKey("at", "body", "material point of the sheave")};
+    return s;
+  }();
+  return schema;
+}
+
 PhysicsType elasticRopeType()
 {
   PhysicsType t;
   t.schema.section = "constraints";
   t.schema.type = t.schema.defaultName = "elastic_rope";
-  t.schema.summary = "An elastic tension-only wire rope from a point over zero, one or two point pulleys to a far "
-                     "point: tension (EA/L0)(l - L0) + c dl/dt while taut, none while slack; slack/taut events.";
+  t.schema.summary = "An elastic tension-only wire rope from a point over point pulleys (sheaves) to a far point, "
+                     "optionally paid out or hauled in by a winch at its first end: tension (EA/L0)(l - L0) + "
+                     "c d(l - L0)/dt while taut, none while slack; slack/taut events.";
   t.schema.keys = {
       bodyKey("from", "body of the rope's first end"),
       atKey("from_at", "from", "material point of the first end"),
@@ -120,6 +142,9 @@ PhysicsType elasticRopeType()
       atKey("pulley_at", "pulley", "material point of the first pulley").requiredWith("pulley"),
       key("pulley2", ValueKind::Body, "", Need::Optional, "body that carries a second pulley, after the first"),
       atKey("pulley2_at", "pulley2", "material point of the second pulley").requiredWith("pulley2"),
+      key("pulleys", ValueKind::MapList, "", Need::Optional,
+          "any number of sheaves [{body, at}, ...] in the order the rope runs over them (instead of pulley/pulley2)")
+          .holding(sheaveSchema()),
       bodyKey("to", "body of the rope's far end"),
       atKey("to_at", "to", "material point of the far end"),
       key("EA", ValueKind::Number, "N", Need::Required, "axial stiffness of the rope (metallic area times the rope's "
@@ -144,9 +169,11 @@ PhysicsType elasticRopeType()
       forbidIfAbsent("pulley", "pulley2", "only allowed together with 'pulley' (the second pulley follows the first)"),
       forbidIfAbsent("pulley", "pulley_at", "only allowed together with 'pulley'"),
       forbidIfAbsent("pulley2", "pulley2_at", "only allowed together with 'pulley2'"),
+      forbidIfPresent("pulleys", "pulley", "not allowed together with 'pulleys' (list every sheave there)"),
+      forbidIfPresent("pulleys", "pulley2", "not allowed together with 'pulleys' (list every sheave there)"),
   };
   const std::string reason = "not allowed for an elastic_rope (it names its points with from/from_at, "
-                             "pulley/pulley_at, pulley2/pulley2_at, to/to_at)";
+                             "pulley/pulley_at, pulley2/pulley2_at or pulleys, to/to_at)";
   for (const char *k : {"body", "at", "point", "angle", "other", "other_at"}) t.schema.rules.push_back(forbid(k, reason));
   t.build = buildElasticRope;
   return t;

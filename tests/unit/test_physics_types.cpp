@@ -30,7 +30,7 @@ void checkSchema(const TypeSchema &s, const std::string &where)
       ASSERT_TRUE(keys.count(k.bodyKey)) << where << ": '" << k.key << "' needs its body key before it";
       EXPECT_EQ(s.find(k.bodyKey)->kind, ValueKind::Body) << where;
     }
-    if (k.kind == ValueKind::Map) {
+    if (k.kind == ValueKind::Map || k.kind == ValueKind::MapList) {
       ASSERT_NE(k.nested, nullptr) << where << ": map '" << k.key << "' without a schema";
       checkSchema(*k.nested, where + "." + k.key);
     }

@@ -209,3 +209,40 @@ dynamic: {t_end: 0.1, dt: 2.0e-5, rho_inf: 1.0}
   EXPECT_NEAR(liftOff, liftRef, 2e-3 * tau1);
   EXPECT_NEAR(peak, peakRef, 0.02 * peakRef);
 }
+
+// The list form `pulleys: [{body, at}, ...]`: the same two sheaves as
+// pulley/pulley2 give the same run bit for bit; three sheaves span the sum of
+// the four straight segments (derived here from the points).
+TEST(WinchVerification, SheaveListMatchesPulleyKeysAndTakesAnyNumber)
+{
+  auto scene = [](const std::string &sheaves) {
+    return parseScene(R"(
+name: sheaves
+analysis: dynamic
+gravity: [0, -9.81]
+bodies:
+  - {name: ceiling, type: rigid, length: 2.0, origin: [0, 0], section: {rhoA: 1}}
+  - {name: bob, type: rigid, length: 0.1, origin: [1.95, -1.0], section: {rhoA: 100}}
+constraints:
+  - {type: clamp, body: ceiling, at: start}
+  - {type: elastic_rope, name: hoist, from: ceiling, from_at: 0.0, )" + sheaves +
+                          R"(, to: bob, to_at: 0.05, EA: 1.0e5, pretension: 50,
+     winch: {type: ramp, t0: 0.01, t1: 1.01, from: 0, to: -0.1}}
+dynamic: {t_end: 0.02, dt: 1.0e-3, rho_inf: 0.9}
+)",
+                      "sheaves.yaml");
+  };
+  const DynamicHistory keys = runDynamic(scene("pulley: ceiling, pulley_at: 0.5, pulley2: ceiling, pulley2_at: 2.0"));
+  const DynamicHistory list = runDynamic(scene("pulleys: [{body: ceiling, at: 0.5}, {body: ceiling, at: 2.0}]"));
+  const DynamicHistory three =
+      runDynamic(scene("pulleys: [{body: ceiling, at: 0.5}, {body: ceiling, at: 1.2}, {body: ceiling, at: 2.0}]"));
+  ASSERT_TRUE(keys.summary.completed && list.summary.completed && three.summary.completed);
+  PetscMPIInt rank;
+  MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
+  if (rank != 0) return;
+  ASSERT_EQ(keys.outputs.size(), list.outputs.size());
+  for (std::size_t s = 0; s < keys.outputs.size(); ++s) EXPECT_EQ(keys.outputs[s], list.outputs[s]);
+  // Ceiling points at x = 0, 0.5, 1.2, 2.0 (y = 0), the bob's attachment at (2.0, -1.0).
+  EXPECT_NEAR(three.outputs.front()[1], 0.5 + 0.7 + 0.8 + 1.0, 1e-12);
+  EXPECT_NEAR(keys.outputs.front()[1], 0.5 + 1.5 + 1.0, 1e-12);
+}
