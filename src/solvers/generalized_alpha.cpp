@@ -42,6 +42,8 @@ PetscErrorCode GeneralizedAlpha::setUp(PetscInt maxNewton)
     hasDrives_ = hasDrives_ || c->constraint().dependsOnTime();
     c->constraint().velocityBreakpoints(breakpoints_);
   }
+  driveKinks_ = breakpoints_;
+  std::sort(driveKinks_.begin(), driveKinks_.end());
   for (const auto &item : assembler_.model().items()) item->breakpoints(breakpoints_); // winches, releases
   std::sort(breakpoints_.begin(), breakpoints_.end());
   breakpoints_.erase(std::unique(breakpoints_.begin(), breakpoints_.end()), breakpoints_.end());
@@ -219,7 +221,11 @@ PetscErrorCode GeneralizedAlpha::stepToBreakpoint(StepResult *result)
   PetscCall(diagnostics(&left, &violation, false));
   PetscCall(diagnostics(&right, &violation, true));
   impulseWork_ += (right.kinetic + right.strain + right.potential) - (left.kinetic + left.strain + left.potential);
-  PetscCall(projectVelocities());
+  // The velocity projection only where a drive's rate jumps: at the
+  // breakpoints of force elements no constraint changes, and the
+  // velocities are as consistent as after any step (projecting their
+  // round-off-level violation is a solve that cannot meet its tolerances).
+  if (std::binary_search(driveKinks_.begin(), driveKinks_.end(), tb)) PetscCall(projectVelocities());
   PetscCall(consistentAccelerations());
   result->restarted = true;
   PetscFunctionReturn(0);
