@@ -150,7 +150,7 @@ private:
     h_.slacks.push_back(slack);
     std::vector<double> multipliers, slacks, outputs;
     PetscCall(sim_.sensors().readJoints(s.q, s.lambda, slacks, multipliers));
-    PetscCall(sim_.sensors().readOutputs(s.q, s.v, multipliers, outputs));
+    PetscCall(sim_.sensors().readOutputs(s.t, s.q, s.v, multipliers, outputs));
     h_.outputs.push_back(outputs);
     PetscFunctionReturn(0);
   }

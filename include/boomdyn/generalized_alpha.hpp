@@ -86,8 +86,9 @@ public:
   Vec accelerations() const { return qdd_; }
   // Multipliers (unscaled, SI units) in the last nlambda entries.
   Vec multipliers() const { return lambda_; }
-  // Context for diagnostics at the current state (energy, violation).
-  PetscErrorCode diagnostics(EnergyParts *energy, PetscReal *violation);
+  // Context for diagnostics at the current state (energy, violation); with
+  // rightLimit false, as the step that landed on t_ saw it (before a jump at t_).
+  PetscErrorCode diagnostics(EnergyParts *energy, PetscReal *violation, bool rightLimit = true);
   NewtonSolver &newton() { return newton_; }
   // Adaptive steps (-boom_adaptive_tol): a converged step whose error
   // estimate exceeds tol is not taken (result.errorRejected). 0: off.
@@ -116,7 +117,8 @@ private:
   bool hasDrives_ = false; // some constraint depends on time (its power needs the multipliers)
   bool kinkRestart_ = true;
   double impulseWork_ = 0; // kinetic energy added by the velocity projections so far [J]
-  std::vector<double> breakpoints_; // sorted velocity kinks of all drives
+  std::vector<double> breakpoints_; // sorted velocity kinks of all drives and breakpoints of work items
+  std::vector<double> driveKinks_;  // sorted velocity kinks of the drives alone (where to project velocities)
   PetscHandle<Vec> q_, v_, qdd_, a_, lambda_;       // state at t_
   PetscHandle<Vec> x_, qp_, vc_, ac_, zero_;        // work vectors of a step
   PetscHandle<Vec> shift_, impulse_;                // velocity projection

@@ -24,6 +24,7 @@ enum class ValueKind {
   MaterialCoordinate, // start, end or s in [0, length] of the body named by KeySchema::bodyKey
   Component,          // the name of a component of type KeySchema::refType listed before this one
   Map,                // a nested map checked against KeySchema::nested
+  MapList,            // a list of such maps; in the spec a map of the items by index "0", "1", ...
 };
 
 enum class Limit { None, Positive, NonNegative };

@@ -35,7 +35,8 @@ public:
   // state (rank 0; empty elsewhere): multiplier channels from `multipliers`
   // (all unscaled multipliers, as readJoints gives them), state channels
   // from the values and velocities of their watched coordinates.
-  PetscErrorCode readOutputs(Vec q, Vec v, const std::vector<double> &multipliers, std::vector<double> &outputs);
+  PetscErrorCode readOutputs(double t, Vec q, Vec v, const std::vector<double> &multipliers,
+                             std::vector<double> &outputs);
   // Values and velocities of the event sources' watched coordinates, one
   // source after the other in Model::eventSources() order (rank 0).
   PetscErrorCode readEventCoordinates(Vec q, Vec v, std::vector<double> &qs, std::vector<double> &vs);

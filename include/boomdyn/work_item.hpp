@@ -42,6 +42,11 @@ struct AssemblyContext {
   bool velocityLevel = false;
   // Emit zeros in every constraint block (the mass pencil B of the eigenproblem).
   bool constraintBlocks = true;
+  // At a breakpoint t_b of an item whose forces or inertia jump there (a
+  // released mass): false gives the state just before t_b (the step that
+  // lands on t_b), true the state just after (the restart at t_b and the
+  // diagnostics of the state reached). Items without jumps ignore it.
+  bool rightLimit = false;
 };
 
 // Values of the item's unknowns, in the order of dofs(): q, v, a of the
@@ -84,6 +89,11 @@ public:
   // Diagnostics at a state.
   virtual void energy(const AssemblyContext &, const ItemValues &, EnergyParts &) const {}
   virtual double constraintViolation(const AssemblyContext &, const ItemValues &) const { return 0; }
+  // Times at which the item's explicit time dependence jumps in rate (a
+  // winch speed) or in value (a released mass), appended to out: the
+  // integrator lands a step on each and restarts there with consistent
+  // accelerations (docs/model.md §4.8), like at a drive's velocity kink.
+  virtual void breakpoints(std::vector<double> &out) const { (void)out; }
   // Physical damping: true when the item adds a dissipative force that
   // depends on the velocities as material behaviour (Kelvin-Voigt sections,
   // dampers), which selects the damped (PEP) eigen-analysis. Friction's

@@ -151,7 +151,7 @@ PetscErrorCode SensorProbe::setUp(Vec layout)
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode SensorProbe::readOutputs(Vec q, Vec v, const std::vector<double> &multipliers,
+PetscErrorCode SensorProbe::readOutputs(double t, Vec q, Vec v, const std::vector<double> &multipliers,
                                         std::vector<double> &outputs)
 {
   std::vector<double> qs, vs;
@@ -166,7 +166,7 @@ PetscErrorCode SensorProbe::readOutputs(Vec q, Vec v, const std::vector<double> 
       outputs.push_back(ch.factor * multipliers.at(static_cast<std::size_t>(ch.index)));
       continue;
     }
-    outputs.push_back(ch.value(qs.data() + offset, vs.data() + offset));
+    outputs.push_back(ch.evaluate(t, qs.data() + offset, vs.data() + offset));
     offset += ch.watched.size();
   }
   PetscFunctionReturn(0);

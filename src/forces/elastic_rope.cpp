@@ -2,23 +2,32 @@
 
 namespace boomdyn {
 
-ElasticRope::ElasticRope(std::string name, RopePath path, double EA, double restLength, double damping)
-  : name_(std::move(name)), path_(std::move(path)), EA_(EA), L0_(restLength), c_(damping)
+ElasticRope::ElasticRope(std::string name, RopePath path, double EA, double restLength, double damping,
+                         TimeFunction payout)
+  : name_(std::move(name)), path_(std::move(path)), EA_(EA), L0_(restLength), c_(damping),
+    payout_(std::move(payout)), winch_(payout_.kind() != TimeFunction::Kind::Constant || payout_.value(0) != 0)
 {
 }
 
-ElasticRope::State ElasticRope::state(const double *q, const double *v) const
+ElasticRope::State ElasticRope::state(double t, const double *q, const double *v) const
 {
   State st;
   Eigen::RowVectorXd lq;
   st.length = path_.evaluate(q, lq);
   st.rate = lq.dot(Eigen::Map<const Eigen::VectorXd>(v, path_.numCoordinates()));
-  st.stretch = st.length - L0_;
-  st.force = stiffness() * st.stretch + c_ * st.rate;
+  st.restLength = restLength(t);
+  st.payout = payout_.value(t);
+  st.payoutRate = payout_.rate(t);
+  st.stretch = st.length - st.restLength;
+  st.force = stiffness(t) * st.stretch + c_ * (st.rate - st.payoutRate);
   // Tension only, and only while longer than unstretched: a rope shorter
   // than L0 carries nothing even while it lengthens fast (no damping pull).
   st.taut = st.stretch > 0 && st.force > 0;
   st.tension = st.taut ? st.force : 0.0;
+  if (st.stretch > 0) {
+    const double eps = st.stretch / st.restLength;
+    st.winchPower = -(st.tension + 0.5 * EA_ * eps * eps) * st.payoutRate;
+  }
   return st;
 }
 
@@ -29,8 +38,9 @@ void ElasticRope::evaluate(const AssemblyContext &ctx, const ItemValues &in, dou
   Eigen::MatrixXd lqq = Eigen::MatrixXd::Zero(n, n);
   const double l = path_.evaluate(in.q, lq, 1.0, &lqq);
   const Eigen::Map<const Eigen::VectorXd> v(in.v, n);
-  const double rate = lq.dot(v), k = stiffness(), f = k * (l - L0_) + c_ * rate;
-  if (!(l > L0_ && f > 0)) return; // slack: no force, no stiffness
+  const double L0 = restLength(ctx.t), k = EA_ / L0;
+  const double rate = lq.dot(v), f = k * (l - L0) + c_ * (rate - payout_.rate(ctx.t));
+  if (!(l > L0 && f > 0)) return; // slack: no force, no stiffness
   // The active set is that of the current Newton iterate (a semismooth
   // Newton step); a step whose iteration does not converge is cut by the
   // step controller.
@@ -43,13 +53,16 @@ void ElasticRope::evaluate(const AssemblyContext &ctx, const ItemValues &in, dou
         kin.cV * c_ * lq.transpose() * lq;
 }
 
-void ElasticRope::energy(const AssemblyContext &, const ItemValues &in, EnergyParts &e) const
+void ElasticRope::energy(const AssemblyContext &ctx, const ItemValues &in, EnergyParts &e) const
 {
-  const State st = state(in.q, in.v);
-  const double elastic = st.stretch > 0 ? stiffness() * st.stretch : 0.0;
-  if (st.stretch > 0) e.strain += 0.5 * stiffness() * st.stretch * st.stretch;
-  // Power into the rope T l' minus the rate of its strain energy: >= 0 in every case of the cut.
-  e.dissipation += st.tension * st.rate - elastic * st.rate;
+  const State st = state(ctx.t, in.q, in.v);
+  const double k = stiffness(ctx.t), elastic = st.stretch > 0 ? k * st.stretch : 0.0;
+  if (st.stretch > 0) e.strain += 0.5 * k * st.stretch * st.stretch;
+  // Power into the rope T s' minus the rate of its strain energy at fixed
+  // L0: >= 0 in every case of the cut (s = l - L0).
+  const double stretchRate = st.rate - st.payoutRate;
+  e.dissipation += st.tension * stretchRate - elastic * stretchRate;
+  e.inputPower += st.winchPower;
 }
 
 } // namespace boomdyn

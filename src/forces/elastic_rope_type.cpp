@@ -3,8 +3,10 @@
 // zero, one or two point pulleys to a far point (elastic_rope.hpp). It is a
 // force element, not a constraint (no multiplier), but it joins bodies as
 // the rope and distance constraints do, so it is listed with them.
-// Outputs per rope and step: tension, length, stretch (state channels);
-// events: taut / slack (direction +1 / -1) at the interpolated crossing.
+// Outputs per rope and step: tension, length, stretch (state channels), and
+// with a winch (`winch`: the paid-out length dL0(t)) also payout (dL0(t))
+// and winch_power; events: taut / slack
+// (direction +1 / -1) at the interpolated crossing.
 #include "boomdyn/elastic_rope.hpp"
 #include "boomdyn/model_builder.hpp"
 #include "boomdyn/physics_type.hpp"
@@ -39,6 +41,13 @@ void buildElasticRope(const ComponentSpec &spec, ModelBuilder &b)
   std::vector<RopePath::Point> points{{&b.body(spec.text("from")), spec.number("from_at")}};
   for (const char *pulley : {"pulley", "pulley2"})
     if (spec.has(pulley)) points.push_back({&b.body(spec.text(pulley)), spec.number(std::string(pulley) + "_at")});
+  if (spec.has("pulleys")) { // the list form: any number of sheaves, in the order the rope runs over them
+    const ComponentSpec &list = spec.map("pulleys");
+    for (std::size_t i = 0; list.has(std::to_string(i)); ++i) {
+      const ComponentSpec &sheave = list.map(std::to_string(i));
+      points.push_back({&b.body(sheave.text("body")), sheave.number("at")});
+    }
+  }
   points.push_back({&b.body(spec.text("to")), spec.number("to_at")});
   RopePath path(points);
   std::vector<PetscInt> dofs;
@@ -51,16 +60,33 @@ void buildElasticRope(const ComponentSpec &spec, ModelBuilder &b)
   if (!(spanned > 0))
     throw ModelError(ModelBuilder::where(spec.mark) + "elastic_rope '" + spec.name +
                      "': its points coincide at t = 0 (spanned length 0)");
-  auto rope = std::make_unique<ElasticRope>(spec.name, std::move(path), EA, L0, spec.number("damping"));
+  // The winch: L0(t) = L0 + dL0(t), and the rope must not be paid in below nothing.
+  const TimeFunction payout = spec.has("winch") ? spec.function("winch") : TimeFunction();
+  auto rope = std::make_unique<ElasticRope>(spec.name, std::move(path), EA, L0, spec.number("damping"), payout);
+  if (rope->hasWinch()) {
+    std::vector<double> knots{0.0};
+    payout.velocityBreakpoints(knots);
+    knots.push_back(payout.endTime());
+    for (double t : knots)
+      if (!(rope->restLength(t) > 0))
+        throw ModelError(ModelBuilder::where(spec.mark) + "elastic_rope '" + spec.name + "': key 'winch': the winch " +
+                         "hauls in more rope than there is (unstretched length " + numberText(rope->restLength(t)) +
+                         " m at t = " + numberText(t) + " s)");
+  }
   const ElasticRope *r = rope.get(); // owned by the Model, which also holds the channels and the source
   b.addItem(std::move(rope));
   auto channel = [&](const char *quantity, const char *unit, double (*pick)(const ElasticRope::State &)) {
-    b.addOutputChannel(OutputChannel::ofState("elastic_rope", spec.name, quantity, unit, dofs,
-                                              [r, pick](const double *q, const double *v) { return pick(r->state(q, v)); }));
+    b.addOutputChannel(OutputChannel::ofTimedState(
+        "elastic_rope", spec.name, quantity, unit, dofs,
+        [r, pick](double t, const double *q, const double *v) { return pick(r->state(t, q, v)); }));
   };
   channel("tension", "N", [](const ElasticRope::State &s) { return s.tension; });
   channel("length", "m", [](const ElasticRope::State &s) { return s.length; });
   channel("stretch", "m", [](const ElasticRope::State &s) { return s.stretch; });
+  if (r->hasWinch()) { // only with a winch, so that the outputs of ropes without one stay as they were
+    channel("payout", "m", [](const ElasticRope::State &s) { return s.payout; });
+    channel("winch_power", "W", [](const ElasticRope::State &s) { return s.winchPower; });
+  }
   // Slack/taut events: +1 taut, -1 slack.
   struct Last {
     double t = 0;
@@ -70,11 +96,12 @@ void buildElasticRope(const ComponentSpec &spec, ModelBuilder &b)
   EventSource source{spec.name, {"taut", "slack"}, dofs, nullptr};
   source.detect = [r, last, name = spec.name](double t, double h, const double *q, const double *v, bool first,
                                              std::vector<TypeEvent> &events) {
-    const ElasticRope::State now = r->state(q, v), &before = last->state;
+    const ElasticRope::State now = r->state(t, q, v), &before = last->state;
     if (!first && now.taut != before.taut) {
       double when = t;
       if ((before.stretch > 0) != (now.stretch > 0)) // by length: the stretch crossed zero
-        when = stretchCrossing(t, h, before.stretch, before.rate, now.stretch, now.rate);
+        when = stretchCrossing(t, h, before.stretch, before.rate - before.payoutRate, now.stretch,
+                               now.rate - now.payoutRate);
       else if (before.force != now.force) // by damping: f crossed zero (linear in the step)
         when = t - h * now.force / (now.force - before.force);
       events.push_back({when, name, now.taut ? "taut" : "slack", now.taut ? 1 : -1});
@@ -86,13 +113,28 @@ void buildElasticRope(const ComponentSpec &spec, ModelBuilder &b)
 
 } // namespace
 
+// One sheave of the list form `pulleys: [{body, at}, ...]`.
+const TypeSchema &sheaveSchema()
+{
+  static const TypeSchema schema = [] {
+    TypeSchema s;
+    s.section = "constraints";
+    s.type = "sheave";
+    s.summary = "one point pulley (sheave) of the list `pulleys`, in the order the rope runs over them";
+    s.keys = {bodyKey("body", "body that carries the sheave"), atKey("at", "body", "material point of the sheave")};
+    return s;
+  }();
+  return schema;
+}
+
 PhysicsType elasticRopeType()
 {
   PhysicsType t;
   t.schema.section = "constraints";
   t.schema.type = t.schema.defaultName = "elastic_rope";
-  t.schema.summary = "An elastic tension-only wire rope from a point over zero, one or two point pulleys to a far "
-                     "point: tension (EA/L0)(l - L0) + c dl/dt while taut, none while slack; slack/taut events.";
+  t.schema.summary = "An elastic tension-only wire rope from a point over point pulleys (sheaves) to a far point, "
+                     "optionally paid out or hauled in by a winch at its first end: tension (EA/L0)(l - L0) + "
+                     "c d(l - L0)/dt while taut, none while slack; slack/taut events.";
   t.schema.keys = {
       bodyKey("from", "body of the rope's first end"),
       atKey("from_at", "from", "material point of the first end"),
@@ -100,6 +142,9 @@ PhysicsType elasticRopeType()
       atKey("pulley_at", "pulley", "material point of the first pulley").requiredWith("pulley"),
       key("pulley2", ValueKind::Body, "", Need::Optional, "body that carries a second pulley, after the first"),
       atKey("pulley2_at", "pulley2", "material point of the second pulley").requiredWith("pulley2"),
+      key("pulleys", ValueKind::MapList, "", Need::Optional,
+          "any number of sheaves [{body, at}, ...] in the order the rope runs over them (instead of pulley/pulley2)")
+          .holding(sheaveSchema()),
       bodyKey("to", "body of the rope's far end"),
       atKey("to_at", "to", "material point of the far end"),
       key("EA", ValueKind::Number, "N", Need::Required, "axial stiffness of the rope (metallic area times the rope's "
@@ -109,18 +154,26 @@ PhysicsType elasticRopeType()
       key("pretension", ValueKind::Number, "N", Need::Optional, "tension in the initial configuration")
           .nonNegative()
           .byDefault(0.0),
-      key("damping", ValueKind::Number, "N s/m", Need::Optional, "damping c of the tension c dl/dt")
+      key("damping", ValueKind::Number, "N s/m", Need::Optional,
+          "damping c of the tension c d(l - L0)/dt (the stretch rate)")
           .nonNegative()
           .byDefault(0.0),
+      key("winch", ValueKind::TimeFunction, "m", Need::Optional,
+          "winch at the first end: the rope length dL0(t) it has paid out since t = 0, so that L0(t) = L0 + dL0(t) "
+          "(hoisting: decreasing; hoisting at speed v from t0: a ramp to -v (t1 - t0) at t1); adds the outputs "
+          "payout (dL0(t)) and winch_power")
+          .derived("none (L0 fixed)"),
   };
   t.schema.rules = {
       forbidIfPresent("length", "pretension", "not allowed together with 'length' (the pretension sets the length)"),
       forbidIfAbsent("pulley", "pulley2", "only allowed together with 'pulley' (the second pulley follows the first)"),
       forbidIfAbsent("pulley", "pulley_at", "only allowed together with 'pulley'"),
       forbidIfAbsent("pulley2", "pulley2_at", "only allowed together with 'pulley2'"),
+      forbidIfPresent("pulleys", "pulley", "not allowed together with 'pulleys' (list every sheave there)"),
+      forbidIfPresent("pulleys", "pulley2", "not allowed together with 'pulleys' (list every sheave there)"),
   };
   const std::string reason = "not allowed for an elastic_rope (it names its points with from/from_at, "
-                             "pulley/pulley_at, pulley2/pulley2_at, to/to_at)";
+                             "pulley/pulley_at, pulley2/pulley2_at or pulleys, to/to_at)";
   for (const char *k : {"body", "at", "point", "angle", "other", "other_at"}) t.schema.rules.push_back(forbid(k, reason));
   t.build = buildElasticRope;
   return t;

@@ -43,8 +43,9 @@ void PointForce::energy(const AssemblyContext &ctx, const ItemValues &in, Energy
   e.inputPower -= (ctx.loadFactor * scale_.rate(ctx.t) * force_).dot(p.r[0]);
 }
 
-PointMass::PointMass(std::string name, const Body &body, double s, double mass, Vec2 gravity)
-  : name_(std::move(name)), body_(&body), s_(s), loc_(body.locate(s)), mass_(mass), gravity_(gravity)
+PointMass::PointMass(std::string name, const Body &body, double s, double mass, Vec2 gravity, Release release)
+  : name_(std::move(name)), body_(&body), s_(s), loc_(body.locate(s)), mass_(mass), gravity_(gravity),
+    release_(release)
 {
 }
 
@@ -53,6 +54,7 @@ void PointMass::coordinates(std::vector<PetscInt> &dofs) const { locationDofs(lo
 void PointMass::evaluate(const AssemblyContext &ctx, const ItemValues &in, double *residual, double *J) const
 {
   // Written for linear centerlines (ANCF): m S^T (S a - g).
+  if (release_.gone(ctx)) return;
   CenterlineSample p;
   body_->sample(loc_, s_, in.q, p);
   const int n = loc_.count;
@@ -66,6 +68,7 @@ void PointMass::evaluate(const AssemblyContext &ctx, const ItemValues &in, doubl
 
 void PointMass::energy(const AssemblyContext &ctx, const ItemValues &in, EnergyParts &e) const
 {
+  if (release_.gone(ctx)) return;
   CenterlineSample p;
   body_->sample(loc_, s_, in.q, p);
   const int n = loc_.count;

@@ -229,17 +229,34 @@ void ComponentReader::readValue(const Field &f, const KeySchema &k, const std::s
     spec.set(k.key, named);
     return;
   }
-  case ValueKind::Map: {
+  case ValueKind::Map:
+  case ValueKind::MapList: {
     // Keys its rules forbid are known here too (their reason beats "unknown key").
     std::vector<std::string> keys;
     for (const KeySchema &nested : k.nested->keys) keys.push_back(nested.key);
     for (const KeyRule &rule : k.nested->rules)
       if (std::find(keys.begin(), keys.end(), rule.key) == keys.end()) keys.push_back(rule.key);
-    const MapView m(report_, f, keys);
-    ComponentSpec nested(k.nested->type, spec.name + "." + k.key);
-    nested.mark = report_.sourceMark(f);
-    readKeys(m, *k.nested, {}, section, scene, prefix + k.key + ".", nested, fields);
-    spec.set(k.key, nested);
+    auto readMap = [&](const Field &item, const std::string &path) {
+      const MapView m(report_, item, keys);
+      ComponentSpec nested(k.nested->type, spec.name + "." + path);
+      nested.mark = report_.sourceMark(item);
+      readKeys(m, *k.nested, {}, section, scene, prefix + path + ".", nested, fields);
+      return nested;
+    };
+    if (k.kind == ValueKind::Map) {
+      spec.set(k.key, readMap(f, k.key));
+      return;
+    }
+    if (!f.node.IsSequence() || f.node.size() == 0)
+      report_.fail(f, "must be a non-empty list of maps [{...}, ...]");
+    ComponentSpec list(k.nested->type, spec.name + "." + k.key);
+    list.mark = report_.sourceMark(f);
+    for (std::size_t i = 0; i < f.node.size(); ++i) {
+      const std::string index = "[" + std::to_string(i) + "]";
+      const Field item{f.node[i], f.path + index, f.node[i].Mark(), f.node[i].Mark()};
+      list.set(std::to_string(i), readMap(item, k.key + index));
+    }
+    spec.set(k.key, list);
     return;
   }
   }

@@ -59,6 +59,8 @@ std::string kindText(const KeySchema &k)
     return "name of a " + code(k.refType) + " listed before";
   case ValueKind::Map:
     return "map (table below)";
+  case ValueKind::MapList:
+    return "list of maps (table below)";
   }
   return "";
 }
@@ -123,7 +125,7 @@ std::string schemaMarkdown(const std::string &section)
     first = false;
     table(out, s, typeKey, true);
     for (const KeySchema &k : s.keys)
-      if (k.kind == ValueKind::Map && k.nested) {
+      if ((k.kind == ValueKind::Map || k.kind == ValueKind::MapList) && k.nested) {
         out << "\n" << code(s.type) << "." << code(k.key) << ": " << k.nested->summary << "\n\n";
         table(out, *k.nested, false, false);
         if (!k.nested->forms.empty()) out << "\nForms: " << k.nested->formsText << " (exactly one).\n";

@@ -18,6 +18,7 @@
   X(ropeType) \
   X(elasticRopeType) \
   X(distanceType) \
+  X(groundContactType) \
   X(pointForceType) \
   X(pointMassType) \
   X(springType) \

@@ -40,7 +40,7 @@ PetscErrorCode ResultsOutput::writeJoints(const RunState &s)
   PetscCall(sim_.sensors().readJoints(s.q, s.lambda, slacks_, multipliers_));
   PetscCall(sim_.sensors().readFrames(s.q, deflections_));
   PetscCall(ropes_.update(sim_.comm(), s.t, multipliers_, tensions));
-  PetscCall(sim_.sensors().readOutputs(s.q, s.v, multipliers_, outputs_));
+  PetscCall(sim_.sensors().readOutputs(s.t, s.q, s.v, multipliers_, outputs_));
   design_.update(s.t, outputs_, multipliers_);
   PetscCall(writer_.appendJoints(slacks_, multipliers_, tensions, deflections_, outputs_));
   PetscFunctionReturn(0);
@@ -51,7 +51,7 @@ PetscErrorCode ResultsOutput::writeOutputs(const RunState &s)
   PetscFunctionBeginUser;
   if (sim_.model().outputChannels().empty()) PetscFunctionReturn(0);
   PetscCall(sim_.sensors().readJoints(s.q, s.lambda, slacks_, multipliers_));
-  PetscCall(sim_.sensors().readOutputs(s.q, s.v, multipliers_, outputs_));
+  PetscCall(sim_.sensors().readOutputs(s.t, s.q, s.v, multipliers_, outputs_));
   PetscCall(writer_.appendJoints({}, {}, {}, {}, outputs_));
   PetscFunctionReturn(0);
 }

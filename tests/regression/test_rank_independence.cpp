@@ -124,6 +124,51 @@ TEST(RankIndependence, ElasticRopeRunMatchesSingleRank)
   }
 }
 
+// A hoist (issue 16): a rigid payload with point masses, one of them
+// released at 0.1 s, resting on the ground (ground_contact), hoisted by a
+// winch rope from the lower beam over a sheave list at the upper beam's end:
+// the same run on 2 ranks as on one (breakpoints, restarts, events).
+TEST(RankIndependence, HoistRunMatchesSingleRank)
+{
+  PetscMPIInt size, rank;
+  MPI_Comm_size(PETSC_COMM_WORLD, &size);
+  MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
+  if (size == 1) GTEST_SKIP() << "run under mpiexec -n 2 (CTest: mpi2.regression)";
+  std::string text = kScene;
+  text.insert(text.find("constraints:"),
+              "  - {name: payload, type: rigid, length: 0.4, origin: [3.3, -1.0], section: {rhoA: 200}}\n");
+  text.insert(text.find("loads:"),
+              "  - {type: elastic_rope, name: hoist, from: lower, from_at: 1.0, pulleys: [{body: upper, at: end}], "
+              "to: payload, to_at: 0.2, EA: 2.0e6, pretension: 500, winch: {type: ramp, t0: 0.05, t1: 0.2, from: 0, "
+              "to: -0.04}}\n"
+              "  - {type: ground_contact, name: ground, body: payload, at: 0.2, level: -1.0, stiffness: 1.0e6}\n");
+  text.insert(text.find("dynamic:"), "  - {name: hook, body: payload, at: 0.2, mass: 40}\n"
+                                     "  - {name: part, body: payload, at: 0.3, mass: 20, release_at: 0.1}\n");
+  const Scene scene = parseScene(text, "rank-independence-hoist.yaml");
+  const DynamicHistory distributed = runDynamic(scene, PETSC_COMM_WORLD);
+  const DynamicHistory alone = runDynamic(scene, PETSC_COMM_SELF);
+  ASSERT_TRUE(distributed.summary.completed) << distributed.summary.failure;
+  ASSERT_TRUE(alone.summary.completed) << alone.summary.failure;
+  const double relative = finalStateDifference(distributed, alone);
+  PetscPrintf(PETSC_COMM_WORLD, "  hoist, %d ranks vs 1: max relative difference of final q, v = %.3e, %d steps\n", size,
+              relative, (int)alone.summary.steps);
+  EXPECT_LT(relative, 1e-10);
+  EXPECT_EQ(distributed.summary.steps, alone.summary.steps);
+  if (rank == 0) {
+    ASSERT_EQ(distributed.outputs.size(), alone.outputs.size());
+    double diff = 0, scale = 0;
+    for (std::size_t s = 0; s < alone.outputs.size(); ++s)
+      for (std::size_t c = 0; c < alone.outputs[s].size(); ++c)
+        diff = std::max(diff, std::abs(distributed.outputs[s][c] - alone.outputs[s][c])),
+        scale = std::max(scale, std::abs(alone.outputs[s][c]));
+    EXPECT_LT(diff, 1e-10 * scale);
+    ASSERT_EQ(distributed.events.size(), alone.events.size());
+    bool released = false;
+    for (const TypeEvent &e : alone.events) released = released || (e.kind == "release" && e.t == 0.1);
+    EXPECT_TRUE(released);
+  }
+}
+
 TEST(RankIndependence, DampedDynamicRunMatchesSingleRank)
 {
   PetscMPIInt size;

@@ -30,7 +30,7 @@ void checkSchema(const TypeSchema &s, const std::string &where)
       ASSERT_TRUE(keys.count(k.bodyKey)) << where << ": '" << k.key << "' needs its body key before it";
       EXPECT_EQ(s.find(k.bodyKey)->kind, ValueKind::Body) << where;
     }
-    if (k.kind == ValueKind::Map) {
+    if (k.kind == ValueKind::Map || k.kind == ValueKind::MapList) {
       ASSERT_NE(k.nested, nullptr) << where << ": map '" << k.key << "' without a schema";
       checkSchema(*k.nested, where + "." + k.key);
     }
@@ -81,7 +81,8 @@ TEST(PhysicsTypes, ConstraintTypesInRegistrationOrderAndInTheDocs)
   std::vector<std::string> names;
   for (const PhysicsType *t : physicsTypesOf("constraints")) names.push_back(t->schema.type);
   const std::vector<std::string> expected{"clamp",           "pin",  "angle_drive",  "sliding_joint",
-                                          "extraction_drive", "rope", "elastic_rope", "distance"};
+                                          "extraction_drive", "rope", "elastic_rope", "distance",
+                                          "ground_contact"};
   EXPECT_EQ(names, expected);
   const std::string md = schemaMarkdown("constraints");
   for (const std::string &n : expected) EXPECT_NE(md.find("#### `" + n + "`"), std::string::npos) << n;

@@ -289,7 +289,7 @@ public:
     PetscFunctionBeginUser;
     converged_ = outcome.completed();
     PetscCall(sim_.sensors().readJoints(s.q, s.lambda, slacks, multipliers));
-    PetscCall(sim_.sensors().readOutputs(s.q, s.v, multipliers, out_));
+    PetscCall(sim_.sensors().readOutputs(s.t, s.q, s.v, multipliers, out_));
     PetscFunctionReturn(0);
   }
 
