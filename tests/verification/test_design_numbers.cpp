@@ -40,7 +40,7 @@ private:
     std::vector<double> slacks, multipliers, outputs;
     PetscFunctionBeginUser;
     PetscCall(sim_.sensors().readJoints(s.q, s.lambda, slacks, multipliers));
-    PetscCall(sim_.sensors().readOutputs(s.q, s.v, multipliers, outputs));
+    PetscCall(sim_.sensors().readOutputs(s.t, s.q, s.v, multipliers, outputs));
     design.update(s.t, outputs, multipliers);
     PetscFunctionReturn(0);
   }
