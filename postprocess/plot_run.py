@@ -201,11 +201,21 @@ def joint_plots(plotter, f):
         ("rope_tension", "/steps/rope_tension", "/layout/rope_names", "tension [N]",
          "rope force (positive: extension rope pulls; negative: retraction rope pulls)"),
     ]
+    # Tension-only (elastic) ropes write their tensions as output channels
+    # (`elastic_rope/<name>/tension` in /steps/outputs), not to /steps/rope_tension.
+    channels = _names(f, "/layout/output_names")
+    elastic = [k for k, c in enumerate(channels) if c.startswith("elastic_rope/") and c.endswith("/tension")]
     for name, path, names_path, ylabel, title in series:
-        if path not in f:
+        if name == "rope_tension" and elastic:
+            outputs = f["steps/outputs"][()]
+            data = outputs[:, elastic] if path not in f else np.hstack([f[path][()], outputs[:, elastic]])
+            names = _names(f, names_path) + [channels[k].split("/")[1] for k in elastic]
+            title = "rope tensions (elastic ropes pull only)" if path not in f else title
+        elif path not in f:
             plotter.skip(name, "no " + path)
             continue
-        data, names = f[path][()], _names(f, names_path)
+        else:
+            data, names = f[path][()], _names(f, names_path)
         fig, (ax,) = plotter.figure()
         for k in range(data.shape[1]):
             ax.plot(t[: len(data)], data[:, k], label=names[k] if k < len(names) else str(k))
