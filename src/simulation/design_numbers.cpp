@@ -2,6 +2,7 @@
 
 #include "boomdyn/angle_drive.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <set>
@@ -61,6 +62,17 @@ void DesignNumbers::update(double t, const std::vector<double> &outputs, const s
   }
 }
 
+namespace {
+// A rope that carries nothing at t = 0 (a payload resting on the ground, the
+// rigid rope of a mechanism at rest) reads a tension of round-off size there
+// (3e-7 N against a 20 kN peak on the lift-off scene); a ratio to that is
+// noise, so a start below a millionth of the largest tension counts as none.
+bool hasStaticTension(double start, double peak, double low)
+{
+  return start > 1e-6 * std::max(std::abs(peak), std::abs(low));
+}
+} // namespace
+
 std::vector<std::pair<std::string, double>> DesignNumbers::attributes() const
 {
   std::vector<std::pair<std::string, double>> out;
@@ -75,8 +87,8 @@ std::vector<std::pair<std::string, double>> DesignNumbers::attributes() const
       out.push_back({p + "min_tension_N", it.low});
       out.push_back({p + "min_tension_time_s", it.lowTime});
       // Without a static tension (a slack start) the factors are not defined: NaN.
-      out.push_back({p + "dynamic_factor", it.start > 0 ? it.peak / it.start : std::nan("")});
-      out.push_back({p + "min_factor", it.start > 0 ? it.low / it.start : std::nan("")});
+      out.push_back({p + "dynamic_factor", hasStaticTension(it.start, it.peak, it.low) ? it.peak / it.start : std::nan("")});
+      out.push_back({p + "min_factor", hasStaticTension(it.start, it.peak, it.low) ? it.low / it.start : std::nan("")});
       break;
     case Kind::Moment:
       out.push_back({p + "peak_root_moment_Nm", it.peak});
@@ -100,7 +112,7 @@ std::string DesignNumbers::report() const
     if (!it.seen) continue;
     switch (it.kind) {
     case Kind::Tension:
-      if (it.start > 0)
+      if (hasStaticTension(it.start, it.peak, it.low))
         std::snprintf(line, sizeof line,
                       "  %s '%s': static tension %.6g N (t = 0), peak %.6g N at t = %.4g s (dynamic factor %.4f), "
                       "minimum %.6g N at t = %.4g s (%.4f)\n",
