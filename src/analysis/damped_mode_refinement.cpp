@@ -22,6 +22,7 @@ namespace {
 // q part this is the exact multiplier part.
 struct MultiplierFit {
   std::vector<PetscHandle<Vec>> c; // K e_i
+  std::vector<Vec> raw;            // the same vectors, for VecMDot/VecMAXPY
   Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> gram;
   PetscInt nq = 0;
 
@@ -44,60 +45,56 @@ struct MultiplierFit {
       PetscCall(MatMult(K, e, ci));
       c.push_back(std::move(ci));
     }
+    raw.assign(c.begin(), c.end());
     Eigen::MatrixXd G(multipliers, multipliers);
-    std::vector<Vec> cs(c.size());
-    for (std::size_t i = 0; i < c.size(); ++i) cs[i] = c[i];
     std::vector<PetscScalar> dots(c.size());
     for (PetscInt j = 0; j < multipliers; ++j) {
-      PetscCall(VecMDot(c[j], multipliers, cs.data(), dots.data()));
+      PetscCall(VecMDot(c[j], multipliers, raw.data(), dots.data()));
       for (PetscInt i = 0; i < multipliers; ++i) G(i, j) = dots[i];
     }
     gram.compute(G);
     PetscFunctionReturn(0);
   }
 
-  // v <- v - sum a_i c_i orthogonal to every c_i: for a vector with zero
+  // v <- v + sum a_i c_i with a = -(c^T c)^+ c^T v: what is left of v after
+  // its least-squares part in the span of the c_i; the a_i into *a.
+  PetscErrorCode subtractRange(Vec v, Eigen::VectorXd *a) const
+  {
+    const PetscInt m = (PetscInt)raw.size();
+    std::vector<PetscScalar> dots(m);
+    PetscFunctionBeginUser;
+    PetscCall(VecMDot(v, m, raw.data(), dots.data()));
+    *a = -gram.solve(Eigen::Map<const Eigen::VectorXd>(dots.data(), m));
+    for (PetscInt i = 0; i < m; ++i) dots[i] = (*a)[i];
+    // PETSc 3.18 declares the array of VecMAXPY non-const; it only reads it.
+    PetscCall(VecMAXPY(v, m, dots.data(), const_cast<Vec *>(raw.data())));
+    PetscFunctionReturn(0);
+  }
+
+  // v orthogonal to every c_i (twice, for round-off): for a vector with zero
   // multiplier part, the orthogonal projection of its coordinate part onto
   // the null space of C (the c_i span the range of C^T).
   PetscErrorCode projectOut(Vec v) const
   {
-    const PetscInt m = (PetscInt)c.size();
+    Eigen::VectorXd a;
     PetscFunctionBeginUser;
-    if (m == 0) PetscFunctionReturn(0);
-    std::vector<Vec> cs(m);
-    for (PetscInt i = 0; i < m; ++i) cs[i] = c[i];
-    std::vector<PetscScalar> dots(m);
-    for (int pass = 0; pass < 2; ++pass) {
-      PetscCall(VecMDot(v, m, cs.data(), dots.data()));
-      Eigen::VectorXd b(m);
-      for (PetscInt i = 0; i < m; ++i) b[i] = dots[i];
-      const Eigen::VectorXd a = -gram.solve(b);
-      for (PetscInt i = 0; i < m; ++i) dots[i] = a[i];
-      PetscCall(VecMAXPY(v, m, dots.data(), cs.data()));
-    }
+    if (raw.empty()) PetscFunctionReturn(0);
+    for (int pass = 0; pass < 2; ++pass) PetscCall(subtractRange(v, &a));
     PetscFunctionReturn(0);
   }
 
   // r <- r + sum a_i c_i and x_mu <- x_mu + a with a minimizing ||r||.
   PetscErrorCode fit(Vec r, Vec x) const
   {
-    const PetscInt m = (PetscInt)c.size();
-    PetscFunctionBeginUser;
-    if (m == 0) PetscFunctionReturn(0);
-    std::vector<Vec> cs(m);
-    for (PetscInt i = 0; i < m; ++i) cs[i] = c[i];
-    std::vector<PetscScalar> dots(m);
-    PetscCall(VecMDot(r, m, cs.data(), dots.data()));
-    Eigen::VectorXd b(m);
-    for (PetscInt i = 0; i < m; ++i) b[i] = dots[i];
-    const Eigen::VectorXd a = -gram.solve(b);
-    for (PetscInt i = 0; i < m; ++i) dots[i] = a[i];
-    PetscCall(VecMAXPY(r, m, dots.data(), cs.data()));
+    Eigen::VectorXd a;
     PetscInt lo, hi;
     PetscScalar *xa;
+    PetscFunctionBeginUser;
+    if (raw.empty()) PetscFunctionReturn(0);
+    PetscCall(subtractRange(r, &a));
     PetscCall(VecGetOwnershipRange(x, &lo, &hi));
     PetscCall(VecGetArray(x, &xa));
-    for (PetscInt i = 0; i < m; ++i)
+    for (PetscInt i = 0; i < (PetscInt)raw.size(); ++i)
       if (nq + i >= lo && nq + i < hi) xa[nq + i - lo] += a[i];
     PetscCall(VecRestoreArray(x, &xa));
     PetscFunctionReturn(0);
