@@ -4,12 +4,12 @@
 
 #include "boomdyn/log_events.hpp"
 #include "boomdyn/ancf_beam.hpp"
+#include "xdmf_text.hpp"
 
 #include <algorithm>
 #include <chrono>
 #include <ctime>
 #include <cstdio>
-#include <fstream>
 #include <stdexcept>
 
 namespace boomdyn {
@@ -323,36 +323,21 @@ void ResultsWriter::writeXdmf() const
   // Beside the results file, same stem; HDF5 paths are relative to the XDMF file.
   const std::string xmf = (path_.size() > 3 && path_.compare(path_.size() - 3, 3, ".h5") == 0 ? path_.substr(0, path_.size() - 3) : path_) + ".xmf";
   const std::string h5 = path_.substr(path_.find_last_of('/') == std::string::npos ? 0 : path_.find_last_of('/') + 1);
-  std::ofstream out(xmf + ".tmp");
-  const std::string np = std::to_string(sampledPoints_), ns = std::to_string(sampledSegments_);
-  out << "<?xml version=\"1.0\" ?>\n<Xdmf Version=\"3.0\">\n <Domain>\n"
-      << "  <Grid Name=\"" << model_.scene().name << "\" GridType=\"Collection\" CollectionType=\"Temporal\">\n";
+  const std::string np = std::to_string(sampledPoints_);
+  std::string text = xdmf::collectionBegin(model_.scene().name);
   for (std::size_t k = 0; k < snapshotTimes_.size(); ++k) {
     const std::string g = h5 + ":/paraview/" + std::to_string(k);
-    char time[64];
-    std::snprintf(time, sizeof time, "%.17g", snapshotTimes_[k]);
-    out << "   <Grid Name=\"booms\" GridType=\"Uniform\">\n    <Time Value=\"" << time << "\"/>\n"
-        << "    <Topology TopologyType=\"Polyline\" NodesPerElement=\"2\" NumberOfElements=\"" << ns << "\">\n"
-        << "     <DataItem Dimensions=\"" << ns << " 2\" NumberType=\"Int\" Format=\"HDF\">" << h5
-        << ":/paraview/segments</DataItem>\n    </Topology>\n"
-        << "    <Geometry GeometryType=\"XYZ\">\n     <DataItem Dimensions=\"" << np
-        << " 3\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">" << g << "/points</DataItem>\n    </Geometry>\n";
+    text += xdmf::polylineGridBegin("booms", snapshotTimes_[k], sampledSegments_, sampledPoints_,
+                                    h5 + ":/paraview/segments", g + "/points");
     for (const char *field : {"axial_strain", "curvature"})
-      out << "    <Attribute Name=\"" << field << "\" AttributeType=\"Scalar\" Center=\"Node\">\n     <DataItem Dimensions=\""
-          << np << "\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">" << g << "/" << field
-          << "</DataItem>\n    </Attribute>\n";
-    out << "    <Attribute Name=\"velocity\" AttributeType=\"Vector\" Center=\"Node\">\n     <DataItem Dimensions=\"" << np
-        << " 3\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">" << g << "/velocity</DataItem>\n    </Attribute>\n"
-        << "   </Grid>\n";
+      text += std::string("    <Attribute Name=\"") + field +
+              "\" AttributeType=\"Scalar\" Center=\"Node\">\n     <DataItem Dimensions=\"" + np +
+              "\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">" + g + "/" + field + "</DataItem>\n    </Attribute>\n";
+    text += "    <Attribute Name=\"velocity\" AttributeType=\"Vector\" Center=\"Node\">\n     <DataItem Dimensions=\"" + np +
+            " 3\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">" + g + "/velocity</DataItem>\n    </Attribute>\n" +
+            "   </Grid>\n";
   }
-  out << "  </Grid>\n </Domain>\n</Xdmf>\n";
-  out.close();
-  // A failed write (a full disk) keeps the previous XDMF file, not an empty one.
-  if (!out) {
-    std::remove((xmf + ".tmp").c_str());
-    throw std::runtime_error("cannot write '" + xmf + "' (a full disk?)");
-  }
-  std::rename((xmf + ".tmp").c_str(), xmf.c_str());
+  xdmf::writeFileReplacing(xmf, text + xdmf::collectionEnd());
   if (ropeSegments_ > 0)
     writeRopesXdmf(xmf.substr(0, xmf.size() - 4) + ".ropes.xmf", h5, model_.scene().name, snapshotTimes_, ropePoints_,
                    ropeSegments_);

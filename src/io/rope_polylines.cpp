@@ -3,10 +3,8 @@
 #include "boomdyn/constraint_item.hpp"
 #include "boomdyn/elastic_rope.hpp"
 #include "boomdyn/rope.hpp"
+#include "xdmf_text.hpp"
 
-#include <cstdio>
-#include <fstream>
-#include <stdexcept>
 
 namespace boomdyn {
 
@@ -46,29 +44,12 @@ void ropePolylines(const std::vector<DrawnRope> &ropes, const std::vector<double
 void writeRopesXdmf(const std::string &path, const std::string &h5, const std::string &title,
                     const std::vector<double> &times, std::size_t points, std::size_t segments)
 {
-  const std::string np = std::to_string(points), ns = std::to_string(segments);
-  std::ofstream out(path + ".tmp");
-  out << "<?xml version=\"1.0\" ?>\n<Xdmf Version=\"3.0\">\n <Domain>\n"
-      << "  <Grid Name=\"" << title << " ropes\" GridType=\"Collection\" CollectionType=\"Temporal\">\n";
-  for (std::size_t k = 0; k < times.size(); ++k) {
-    char time[64];
-    std::snprintf(time, sizeof time, "%.17g", times[k]);
-    out << "   <Grid Name=\"ropes\" GridType=\"Uniform\">\n    <Time Value=\"" << time << "\"/>\n"
-        << "    <Topology TopologyType=\"Polyline\" NodesPerElement=\"2\" NumberOfElements=\"" << ns << "\">\n"
-        << "     <DataItem Dimensions=\"" << ns << " 2\" NumberType=\"Int\" Format=\"HDF\">" << h5
-        << ":/paraview/rope_segments</DataItem>\n    </Topology>\n"
-        << "    <Geometry GeometryType=\"XYZ\">\n     <DataItem Dimensions=\"" << np
-        << " 3\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">" << h5 << ":/paraview/" << k
-        << "/rope_points</DataItem>\n    </Geometry>\n   </Grid>\n";
-  }
-  out << "  </Grid>\n </Domain>\n</Xdmf>\n";
-  out.close();
-  // A failed write (a full disk) keeps the previous file, not an empty one.
-  if (!out) {
-    std::remove((path + ".tmp").c_str());
-    throw std::runtime_error("cannot write '" + path + "' (a full disk?)");
-  }
-  std::rename((path + ".tmp").c_str(), path.c_str());
+  std::string text = xdmf::collectionBegin(title + " ropes");
+  for (std::size_t k = 0; k < times.size(); ++k)
+    text += xdmf::polylineGridBegin("ropes", times[k], segments, points, h5 + ":/paraview/rope_segments",
+                                    h5 + ":/paraview/" + std::to_string(k) + "/rope_points") +
+            "   </Grid>\n";
+  xdmf::writeFileReplacing(path, text + xdmf::collectionEnd());
 }
 
 } // namespace boomdyn

@@ -1,0 +1,55 @@
+// XDMF text shared by the results file's two descriptions (private to
+// src/io): RUN.xmf (booms, results_writer.cpp) and RUN.ropes.xmf (ropes,
+// rope_polylines.cpp). Both are temporal collections of polyline grids whose
+// arrays live in the HDF5 results file, and both are rewritten whole at every
+// snapshot.
+#pragma once
+
+#include <cstddef>
+#include <cstdio>
+#include <fstream>
+#include <stdexcept>
+#include <string>
+
+namespace boomdyn::xdmf {
+
+inline std::string collectionBegin(const std::string &name)
+{
+  return "<?xml version=\"1.0\" ?>\n<Xdmf Version=\"3.0\">\n <Domain>\n  <Grid Name=\"" + name +
+         "\" GridType=\"Collection\" CollectionType=\"Temporal\">\n";
+}
+
+inline std::string collectionEnd() { return "  </Grid>\n </Domain>\n</Xdmf>\n"; }
+
+// The opening of one time's grid: its time, the polyline topology (the
+// segments' node pairs at segmentsRef) and the node coordinates at
+// pointsRef ("file.h5:/path"); the caller adds attributes and "   </Grid>\n".
+inline std::string polylineGridBegin(const std::string &name, double time, std::size_t segments, std::size_t points,
+                                     const std::string &segmentsRef, const std::string &pointsRef)
+{
+  char t[64];
+  std::snprintf(t, sizeof t, "%.17g", time);
+  const std::string ns = std::to_string(segments), np = std::to_string(points);
+  return "   <Grid Name=\"" + name + "\" GridType=\"Uniform\">\n    <Time Value=\"" + t + "\"/>\n" +
+         "    <Topology TopologyType=\"Polyline\" NodesPerElement=\"2\" NumberOfElements=\"" + ns + "\">\n" +
+         "     <DataItem Dimensions=\"" + ns + " 2\" NumberType=\"Int\" Format=\"HDF\">" + segmentsRef +
+         "</DataItem>\n    </Topology>\n" + "    <Geometry GeometryType=\"XYZ\">\n     <DataItem Dimensions=\"" + np +
+         " 3\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">" + pointsRef + "</DataItem>\n    </Geometry>\n";
+}
+
+// Writes text to path through a temporary file, so that a failed write (a
+// full disk) keeps the previous file instead of leaving an empty one.
+inline void writeFileReplacing(const std::string &path, const std::string &text)
+{
+  const std::string tmp = path + ".tmp";
+  std::ofstream out(tmp);
+  out << text;
+  out.close();
+  if (!out) {
+    std::remove(tmp.c_str());
+    throw std::runtime_error("cannot write '" + path + "' (a full disk?)");
+  }
+  std::rename(tmp.c_str(), path.c_str());
+}
+
+} // namespace boomdyn::xdmf
