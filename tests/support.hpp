@@ -5,10 +5,16 @@
 // constraint violation per step).
 #pragma once
 
+#include "boomdyn/eigen_solver.hpp"
+#include "boomdyn/generalized_alpha.hpp"
 #include "boomdyn/monitor.hpp"
 #include "boomdyn/monitors.hpp"
 #include "boomdyn/scene_reader.hpp"
 #include "boomdyn/simulation.hpp"
+#include "boomdyn/static_solver.hpp"
+#include "boomdyn/time_stepper.hpp"
+
+#include <slepcsys.h>
 
 #include <gtest/gtest.h>
 
@@ -238,6 +244,50 @@ inline double maxRelativeDifference(const std::vector<double> &a, const std::vec
     norm = std::max(norm, std::abs(a[i]));
   }
   return norm > 0 ? diff / norm : diff;
+}
+
+// A scene's model integrated by hand (GeneralizedAlpha and integrate(), not
+// Simulation), at its initial state with consistent accelerations and SLEPc
+// initialized: for tests that analyze the states a run passes through
+// (frequency tracking) or run two analyses side by side on them.
+struct HandIntegration {
+  Model model;
+  Assembler assembler;
+  PetscHandle<Vec> x, zero;
+  std::unique_ptr<GeneralizedAlpha> integrator;
+
+  explicit HandIntegration(const Scene &scene, MPI_Comm comm = PETSC_COMM_WORLD) : model(scene), assembler(model)
+  {
+    check(assembler.setUp(comm));
+    check(assembler.createVector(x.address()));
+    check(assembler.createVector(zero.address()));
+    check(assembler.initialState(x));
+    integrator = std::make_unique<GeneralizedAlpha>(assembler, scene.dynamic.rho_inf);
+    check(integrator->setUp(scene.dynamic.max_newton));
+    check(integrator->initialize(0.0, x, zero));
+    check(SlepcInitialize(nullptr, nullptr, nullptr, nullptr));
+  }
+};
+
+// The modes of a scene at its static equilibrium under its loads at t = 0
+// (like `analysis: modal`); expects the statics to converge.
+inline ModalResult modesAtStaticEquilibrium(const Scene &scene, int count)
+{
+  Model model(scene);
+  Assembler assembler(model);
+  PetscHandle<Vec> x;
+  check(assembler.setUp(PETSC_COMM_WORLD));
+  check(assembler.createVector(x.address()));
+  check(assembler.initialState(x));
+  StaticSolver statics(assembler);
+  check(statics.setUp());
+  PetscBool converged;
+  check(statics.solve(0.0, scene.statics.load_steps, x, nullptr, &converged));
+  EXPECT_TRUE(converged);
+  check(SlepcInitialize(nullptr, nullptr, nullptr, nullptr));
+  ModalResult modes;
+  check(solveModes(assembler, 0.0, x, statics.multipliers(), count, &modes));
+  return modes;
 }
 
 } // namespace boomdyn::testing

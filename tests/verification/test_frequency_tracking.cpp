@@ -49,19 +49,10 @@ dynamic: {t_end: 0.02, dt: 1.0e-3}
 )";
   if (tipMass > 0) text += "masses:\n  - {body: boom, at: end, mass: " + std::to_string(tipMass) + "}\n";
   const Scene scene = parseScene(text, "tracked-cantilever.yaml");
-  Model model(scene);
-  Assembler assembler(model);
-  Vec x, zero;
+  HandIntegration run(scene); // rho_inf 0.8, 25 Newton iterations: the scene's defaults
+  GeneralizedAlpha &integrator = *run.integrator;
   std::vector<double> out;
-  check(assembler.setUp(PETSC_COMM_WORLD));
-  check(assembler.createVector(&x));
-  check(assembler.createVector(&zero));
-  check(assembler.initialState(x));
-  GeneralizedAlpha integrator(assembler, 0.8);
-  check(integrator.setUp(25));
-  check(integrator.initialize(0.0, x, zero));
-  check(SlepcInitialize(nullptr, nullptr, nullptr, nullptr));
-  FrequencyTracker tracker(assembler, 4);
+  FrequencyTracker tracker(run.assembler, 4);
   TrackedModes modes;
   check(tracker.analyze(0.0, integrator.positions(), integrator.multipliers(), &modes));
   out.push_back(modes.trackedHz);
@@ -70,8 +61,6 @@ dynamic: {t_end: 0.02, dt: 1.0e-3}
   check(tracker.analyze(integrator.time(), integrator.positions(), integrator.multipliers(), &modes));
   out.push_back(modes.trackedHz);
   out.push_back(modes.mac);
-  VecDestroy(&x);
-  VecDestroy(&zero);
   return out;
 }
 
@@ -80,21 +69,8 @@ dynamic: {t_end: 0.02, dt: 1.0e-3}
 // modes) are dropped.
 std::vector<double> staticModes(const Scene &scene, int count, bool bendingOnly = false)
 {
-  Model model(scene);
-  Assembler assembler(model);
-  Vec x;
-  check(assembler.setUp(PETSC_COMM_WORLD));
-  check(assembler.createVector(&x));
-  check(assembler.initialState(x));
-  StaticSolver statics(assembler);
-  check(statics.setUp());
-  PetscBool converged;
-  check(statics.solve(0.0, scene.statics.load_steps, x, nullptr, &converged));
-  EXPECT_TRUE(converged);
-  check(SlepcInitialize(nullptr, nullptr, nullptr, nullptr));
-  ModalResult modes;
-  check(solveModes(assembler, 0.0, x, statics.multipliers(), count, &modes));
-  VecDestroy(&x);
+  const ModalResult modes = modesAtStaticEquilibrium(scene, count);
+  const Model model(scene); // the layout of the coordinates
   if (!bendingOnly) return modes.frequencyHz;
   std::vector<double> bending;
   for (std::size_t k = 0; k < modes.frequencyHz.size(); ++k) {

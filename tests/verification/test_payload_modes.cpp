@@ -96,21 +96,7 @@ output:
 // Modes at the static equilibrium of a scene.
 std::vector<double> staticModes(const Scene &scene, int count)
 {
-  Model model(scene);
-  Assembler assembler(model);
-  PetscHandle<Vec> x;
-  check(assembler.setUp(PETSC_COMM_WORLD));
-  check(assembler.createVector(x.address()));
-  check(assembler.initialState(x));
-  StaticSolver statics(assembler);
-  check(statics.setUp());
-  PetscBool converged;
-  check(statics.solve(0.0, scene.statics.load_steps, x, nullptr, &converged));
-  EXPECT_TRUE(converged);
-  check(SlepcInitialize(nullptr, nullptr, nullptr, nullptr));
-  ModalResult modes;
-  check(solveModes(assembler, 0.0, x, statics.multipliers(), count, &modes));
-  return modes.frequencyHz;
+  return modesAtStaticEquilibrium(scene, count).frequencyHz;
 }
 
 // The two roots (Hz) of the chain ground -kb- mb -kr- m.

@@ -52,17 +52,9 @@ double worstEigenResidual(Assembler &assembler, double t, Vec q, Vec lambda, con
 TEST(TrackingRefinement, EqualsFullSolveAlongExtraction)
 {
   const Scene scene = shortenedExtraction(0.5);
-  Model model(scene);
-  Assembler assembler(model);
-  Vec x, zero;
-  check(assembler.setUp(PETSC_COMM_WORLD));
-  check(assembler.createVector(&x));
-  check(assembler.createVector(&zero));
-  check(assembler.initialState(x));
-  GeneralizedAlpha integrator(assembler, scene.dynamic.rho_inf);
-  check(integrator.setUp(scene.dynamic.max_newton));
-  check(integrator.initialize(0.0, x, zero));
-  check(SlepcInitialize(nullptr, nullptr, nullptr, nullptr));
+  HandIntegration run(scene);
+  Assembler &assembler = run.assembler;
+  GeneralizedAlpha &integrator = *run.integrator;
   const int count = scene.tracking.count;
   FrequencyTracker full(assembler, count, true), refined(assembler, count);
   int analyses = 0, refinedAnalyses = 0, differentPick = 0;
@@ -107,8 +99,6 @@ TEST(TrackingRefinement, EqualsFullSolveAlongExtraction)
   EXPECT_LT(worstFrequency, 1e-8);
   EXPECT_EQ(differentPick, 0);
   EXPECT_LT(worstResidual, 1e-8);
-  VecDestroy(&x);
-  VecDestroy(&zero);
 }
 
 namespace {
@@ -165,18 +155,10 @@ double worstDampedResidual(Assembler &assembler, double t, Vec q, Vec lambda, co
 TEST(TrackingRefinement, DampedEqualsFullPepAlongExtraction)
 {
   const Scene scene = shortenedExtraction(0.5);
-  Model model(scene);
-  ASSERT_TRUE(model.hasPhysicalDamping()) << "the paper scene must be damped for this test";
-  Assembler assembler(model);
-  Vec x, zero;
-  check(assembler.setUp(PETSC_COMM_WORLD));
-  check(assembler.createVector(&x));
-  check(assembler.createVector(&zero));
-  check(assembler.initialState(x));
-  GeneralizedAlpha integrator(assembler, scene.dynamic.rho_inf);
-  check(integrator.setUp(scene.dynamic.max_newton));
-  check(integrator.initialize(0.0, x, zero));
-  check(SlepcInitialize(nullptr, nullptr, nullptr, nullptr));
+  HandIntegration run(scene);
+  ASSERT_TRUE(run.model.hasPhysicalDamping()) << "the paper scene must be damped for this test";
+  Assembler &assembler = run.assembler;
+  GeneralizedAlpha &integrator = *run.integrator;
   const int count = scene.tracking.count;
   FrequencyTracker full(assembler, count, true), refined(assembler, count);
   int analyses = 0, refinedAnalyses = 0, differentPick = 0, differentCount = 0;
@@ -226,6 +208,4 @@ TEST(TrackingRefinement, DampedEqualsFullPepAlongExtraction)
   EXPECT_LT(worstOmega, 1e-8);
   EXPECT_LT(worstZeta, 1e-8);
   EXPECT_LT(worstResidual, 1e-8);
-  VecDestroy(&x);
-  VecDestroy(&zero);
 }
