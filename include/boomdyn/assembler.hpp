@@ -41,10 +41,18 @@ public:
   // Energy and max |C| over all constraint rows at the state given by x
   // through the affine map.
   PetscErrorCode diagnostics(const AssemblyContext &ctx, Vec x, EnergyParts *energy, PetscReal *maxViolation);
-  // Sum over all items of dq . Q_d(q, v), the work of the damping forces at
-  // the state (q, v) along the increment dq (all in x's layout; collective).
-  // Leaves the offsets set: the solvers set their own before every assembly.
-  PetscErrorCode dampingWork(Vec q, Vec v, Vec dq, PetscReal *work);
+  // The damping forces Q_d(q, v) of this rank's items, item by item
+  // (DampingForces), and their work dq . Q_d along an increment dq (summed
+  // over the items and the ranks; collective): the energy check evaluates
+  // the forces once per state and takes their work along two steps. Both
+  // leave the offsets set: the solvers set their own before every assembly.
+  struct DampingForces {
+    std::vector<std::size_t> items; // items with damping forces
+    std::vector<int> first;         // where each one's forces start in f
+    std::vector<double> f;
+  };
+  PetscErrorCode dampingForces(Vec q, Vec v, DampingForces *forces);
+  PetscErrorCode dampingWork(const DampingForces &forces, Vec dq, PetscReal *work);
   // Mean diagonal of mass and stiffness over position coordinates at q = x.
   PetscErrorCode characteristicScales(Vec x, PetscReal *mass, PetscReal *stiffness);
 

@@ -20,7 +20,7 @@ public:
   void energy(const AssemblyContext &ctx, const ItemValues &in, EnergyParts &e) const override;
   void scales(const ItemValues &in, double &massDiag, double &stiffDiag, int &count) const override;
   bool physicalDamping() const override;
-  double dampingWork(const ItemValues &in, const double *dq) const override;
+  bool dampingForce(const ItemValues &in, double *f) const override;
 
 private:
   // Kelvin-Voigt damping force into the residual, D (times cV) and dfd/dq (times cQ) into J.

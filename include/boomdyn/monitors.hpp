@@ -29,7 +29,7 @@ class Simulation;
 class EnergyCheck : public Monitor {
 public:
   // assembler: for the work of the damping forces over each step (models
-  // with physical damping only; Assembler::dampingWork).
+  // with physical damping only; Assembler::dampingForces).
   EnergyCheck(double tolerance, Assembler &assembler);
   PetscErrorCode start(const RunState &s, bool) override;
   PetscErrorCode afterStep(const RunState &s, std::string *failure) override;
@@ -41,7 +41,11 @@ private:
   EnergyBalance balance_; // restarted runs check the balance from the restart on: not checkpointed
   Assembler &assembler_;
   bool damped_;
-  PetscHandle<Vec> qPrevious_, vPrevious_, dq_; // damped models: the state before the step, its increment
+  // Damped models: q before the step (for the increment dq_) and the damping
+  // forces there, evaluated once per state and used by the two steps it ends
+  // and begins.
+  PetscHandle<Vec> qPrevious_, dq_;
+  Assembler::DampingForces forcesPrevious_, forces_;
 };
 
 class ResultsOutput : public Monitor {

@@ -100,11 +100,11 @@ public:
   // velocity terms do not count: they are a slip law, not a damping of the
   // vibration (modal_analysis.hpp).
   virtual bool physicalDamping() const { return false; }
-  // dq . Q_d(q, v): the work of the item's damping forces at the state given
-  // (q, v of the coordinates) along an increment dq of its coordinates (J,
-  // > 0 when the force opposes dq). The energy balance integrates it over a
-  // step with the step's own increment (EnergyCheck).
-  virtual double dampingWork(const ItemValues &, const double * /*dq*/) const { return 0; }
+  // Q_d(q, v): the item's damping forces at the state given, over its
+  // coordinates (f gets one entry per coordinate); returns false for an item
+  // without any. The energy balance takes their work along each step's own
+  // increment (EnergyCheck, Assembler::dampingForces).
+  virtual bool dampingForce(const ItemValues &, double * /*f*/) const { return false; }
   // Contribution to a characteristic mass / stiffness (diagonal sums) used to scale multipliers.
   virtual void scales(const ItemValues &, double &massDiag, double &stiffDiag, int &count) const
   {

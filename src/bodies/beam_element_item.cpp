@@ -82,14 +82,16 @@ void BeamElementItem::energy(const AssemblyContext &ctx, const ItemValues &in, E
 
 bool BeamElementItem::physicalDamping() const { return beam_->section().damped(); }
 
-double BeamElementItem::dampingWork(const ItemValues &in, const double *dq) const
+bool BeamElementItem::dampingForce(const ItemValues &in, double *f) const
 {
   const ancf::Section &sec = beam_->section();
-  if (!sec.damped()) return 0.0;
-  const Eigen::Map<const ancf::Vec8> q(in.q), v(in.v), d(dq);
+  if (!sec.damped()) return false;
+  const Eigen::Map<const ancf::Vec8> q(in.q), v(in.v);
   ancf::Vec8 fd;
   (void)ancf::dampingForce(sec, beam_->elementLength(), q, v, fd, nullptr, nullptr);
-  return d.dot(fd);
+  Eigen::Map<ancf::Vec8> out(f);
+  out = fd;
+  return true;
 }
 
 void BeamElementItem::scales(const ItemValues &in, double &massDiag, double &stiffDiag, int &count) const

@@ -258,20 +258,46 @@ PetscErrorCode Assembler::diagnostics(const AssemblyContext &ctx, Vec x, EnergyP
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode Assembler::dampingWork(Vec q, Vec v, Vec dq, PetscReal *work)
+PetscErrorCode Assembler::dampingForces(Vec q, Vec v, DampingForces *forces)
 {
   PetscFunctionBeginUser;
-  // q from x itself, v and the increment through the offsets: the items
-  // read the increment where the accelerations would be.
+  // q from x itself, v through the offsets.
   AssemblyContext ctx;
   ctx.kin = {1.0, 0.0, 0.0};
-  PetscCall(setOffsets(nullptr, v, dq));
+  PetscCall(setOffsets(nullptr, v, nullptr));
   PetscCall(scatterAndMap(ctx, q));
-  double local = 0;
+  forces->items.clear(), forces->first.clear(), forces->f.clear();
   ItemValues vals;
   for (std::size_t k = 0; k < items_.size(); ++k) {
     gather(k, vals);
-    local += items_[k]->dampingWork(vals, vals.a);
+    const std::size_t first = forces->f.size();
+    forces->f.resize(first + itemCoords_[k]);
+    if (items_[k]->dampingForce(vals, forces->f.data() + first)) {
+      forces->items.push_back(k);
+      forces->first.push_back(static_cast<int>(first));
+    } else {
+      forces->f.resize(first);
+    }
+  }
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode Assembler::dampingWork(const DampingForces &forces, Vec dq, PetscReal *work)
+{
+  PetscFunctionBeginUser;
+  // The increment as q (cQ = 1, no offsets).
+  AssemblyContext ctx;
+  ctx.kin = {1.0, 0.0, 0.0};
+  PetscCall(setOffsets(nullptr, nullptr, nullptr));
+  PetscCall(scatterAndMap(ctx, dq));
+  double local = 0;
+  ItemValues vals;
+  for (std::size_t i = 0; i < forces.items.size(); ++i) {
+    const std::size_t k = forces.items[i];
+    gather(k, vals);
+    double itemWork = 0; // per item, then summed: the order of the sums before
+    for (int j = 0; j < itemCoords_[k]; ++j) itemWork += vals.q[j] * forces.f[forces.first[i] + j];
+    local += itemWork;
   }
   PetscCallMPI(MPI_Allreduce(&local, work, 1, MPI_DOUBLE, MPI_SUM, comm_));
   PetscFunctionReturn(0);

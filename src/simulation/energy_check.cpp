@@ -12,11 +12,9 @@ PetscErrorCode EnergyCheck::remember(const RunState &s)
   PetscFunctionBeginUser;
   if (!qPrevious_) {
     PetscCall(assembler_.createVector(qPrevious_.address()));
-    PetscCall(assembler_.createVector(vPrevious_.address()));
     PetscCall(assembler_.createVector(dq_.address()));
   }
   PetscCall(VecCopy(s.q, qPrevious_));
-  PetscCall(VecCopy(s.v, vPrevious_));
   PetscFunctionReturn(0);
 }
 
@@ -25,7 +23,10 @@ PetscErrorCode EnergyCheck::start(const RunState &s, bool)
   PetscFunctionBeginUser;
   if (!s.dynamic) PetscFunctionReturn(0);
   (void)balance_.update(s.t, 0.0, s.energy, 0.0);
-  if (damped_) PetscCall(remember(s));
+  if (damped_) {
+    PetscCall(remember(s));
+    PetscCall(assembler_.dampingForces(s.q, s.v, &forcesPrevious_));
+  }
   PetscFunctionReturn(0);
 }
 
@@ -48,9 +49,11 @@ PetscErrorCode EnergyCheck::afterStep(const RunState &s, std::string *failure)
   if (damped_) {
     PetscReal before, after;
     PetscCall(VecWAXPY(dq_, -1.0, qPrevious_, s.q));
-    PetscCall(assembler_.dampingWork(qPrevious_, vPrevious_, dq_, &before));
-    PetscCall(assembler_.dampingWork(s.q, s.v, dq_, &after));
+    PetscCall(assembler_.dampingForces(s.q, s.v, &forces_));
+    PetscCall(assembler_.dampingWork(forcesPrevious_, dq_, &before));
+    PetscCall(assembler_.dampingWork(forces_, dq_, &after));
     work = 0.5 * (before + after);
+    std::swap(forcesPrevious_, forces_);
     PetscCall(remember(s));
   }
   *failure = balance_.update(s.t, s.h, s.energy, work);

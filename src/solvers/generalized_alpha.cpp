@@ -190,6 +190,9 @@ PetscErrorCode GeneralizedAlpha::projectVelocities()
   // (stick-slip scene at h = 5e-4 s: increments 2e-10, residual 2e-13 after
   // the first iteration against 0.21 at the start). What decides is the
   // residual: the relative test of the SNES tolerance on the whole system.
+  // Not in BlockConvergence itself: there a block that starts at zero
+  // residual (LuGre states at rest, a coordinate block in a step) must
+  // converge by its increment, since a relative test on zero cannot pass.
   if (reason <= 0) {
     PetscReal rtol, atol, stol, finalResidual;
     PetscInt maxIt, maxF;
