@@ -231,14 +231,23 @@ def concurrent(extra_env):
     shared = path("shared.h5")
     first = subprocess.Popen([boomdyn, scene, "-o", shared, "-boom_quiet", "-ts_max_time", "8", "-boom_checkpoint",
                               path("a.chk.h5")], stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, env=e)
-    for _ in range(200):  # until the first run has created its file
+    for _ in range(400):  # until the first run has created its file
         if os.path.exists(shared) or first.poll() is not None:
             break
-        time.sleep(0.05)
-    time.sleep(0.5)
-    check(first.poll() is None, "the first run is still writing when the second starts")
-    rc, out = run(["-o", shared, "-boom_overwrite", "-boom_quiet", "-ts_max_time", "0.01", "-boom_checkpoint",
-                   path("b.chk.h5")], env=e)
+        time.sleep(0.025)
+    # Stopped while the second run starts and ends, so that the first is still
+    # writing whatever the machine's speed (CI once saw it finish first: the
+    # run takes under 2 s since the Jacobian reuse).
+    running = first.poll() is None
+    if running:
+        first.send_signal(signal.SIGSTOP)
+    check(running, "the first run is still writing when the second starts")
+    try:
+        rc, out = run(["-o", shared, "-boom_overwrite", "-boom_quiet", "-ts_max_time", "0.01", "-boom_checkpoint",
+                       path("b.chk.h5")], env=e)
+    finally:
+        if running:
+            first.send_signal(signal.SIGCONT)
     text, _ = first.communicate(timeout=120)
     return first.returncode, text, rc, out, shared
 
