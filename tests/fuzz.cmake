@@ -1,5 +1,6 @@
 # Robustness tests (GitHub issue 8); included at the end of tests/CMakeLists.txt.
 #
+# fuzz.dictionary_covers_keys  its dictionary names every scene key (check_dictionary.py).
 # fuzz.scene_parser   libFuzzer on the scene reader for 60 s (clang++, ASan + UBSan),
 #                     built outside this (g++) project by tests/fuzz/run_fuzzer.sh into
 #                     ${CMAKE_BINARY_DIR}/fuzz; SKIPPED when there is no clang++.
@@ -16,6 +17,10 @@ add_test(NAME fuzz.scene_parser
 set_tests_properties(fuzz.scene_parser PROPERTIES
   LABELS fuzz SKIP_RETURN_CODE 77 TIMEOUT 600
   PROCESSORS 1) # one fuzzing process (FUZZ_JOBS=n for more, outside CTest)
+# The fuzzer's dictionary names every scene key (schema tables, inputs/, seeds).
+add_test(NAME fuzz.dictionary_covers_keys
+  COMMAND /usr/bin/python3 ${CMAKE_SOURCE_DIR}/tests/fuzz/check_dictionary.py ${CMAKE_SOURCE_DIR})
+set_tests_properties(fuzz.dictionary_covers_keys PROPERTIES LABELS fuzz TIMEOUT 60)
 
 # ASan reserves terabytes of address space, so a sanitizer build cannot run under the
 # runner's address-space limit (--mem-mb); ASan's own RSS limit takes its place, and leaks
