@@ -15,15 +15,17 @@ namespace {
 // peak over the hoist load's weight): m g / n, m the mass of the body at the
 // rope's far end (`to`: its rhoA L and every point mass on it at t = 0), n
 // the falls that carry it (1 + the rope's sheaves on that body: a rope
-// reeved through a sheave on the hook block carries it on two falls). 0
-// for other ropes (an inextensible rope of the mechanism).
+// reeved through a sheave on the hook block carries it on two falls).
+// Only for a rope on a winch (a hoist rope: the winch lifts the load); 0
+// for other ropes (an inextensible rope of the mechanism, or a telescoping
+// rope that a static start leaves slack).
 double hangingLoadWeight(const Scene &scene, const std::string &group, const std::string &rope)
 {
   if (group != "elastic_rope") return 0;
   const auto spec = std::find_if(scene.constraints.begin(), scene.constraints.end(), [&](const ComponentSpec &c) {
     return c.type == "elastic_rope" && c.name == rope;
   });
-  if (spec == scene.constraints.end()) return 0;
+  if (spec == scene.constraints.end() || !spec->has("winch")) return 0;
   const std::string load = spec->text("to");
   double mass = 0;
   for (const BodySpec &b : scene.bodies)
