@@ -82,7 +82,24 @@ def make_figure(run, paper=False):
             ax.set_yscale("log")
     ax.plot(tc, fc, ".", ms=3, alpha=0.6, label="zero crossings of the %s" % signal)
     lines = []
-    if damped is not None:
+    if followed is not None and damped is not None:
+        # Per followed mode its damped mode (followed_damped_*), drawn where
+        # the assignment is meaningful (damped MAC >= 0.5; a mode the damped
+        # analysis did not find gets the best of the rest, with a small MAC).
+        with boomdyn_h5.open_run(run) as f:
+            fd = f["tracking/followed_damped_hz"][()]
+            zeta = f["tracking/followed_damping_ratio"][()]
+            dmac = f["tracking/followed_damped_mac"][()]
+        right = ax.twinx()
+        for j in range(fd.shape[1]):
+            ok = dmac[:, j] >= 0.5
+            ax.plot(tt, np.where(ok, fd[:, j], np.nan), "--", lw=1, color="C%d" % (2 * j),
+                    label="followed mode %d: damped frequency (damped MAC >= 0.5)" % (j + 1))
+            lines += right.plot(tt, np.where(ok, 100.0 * zeta[:, j], np.nan), ":", lw=1.5, color="C%d" % (2 * j + 1),
+                                label="followed mode %d: damping ratio (right axis)" % (j + 1))
+        right.set_ylabel("damping ratio [%]")
+        right.set_ylim(bottom=0.0)
+    elif damped is not None:
         fd, zeta = damped
         ax.plot(tt, fd, "--", lw=1, color="C0", label="its damped frequency (damped eigen-analysis)")
         right = ax.twinx()
