@@ -1,6 +1,7 @@
 #!/usr/bin/env python3
 """Frequency along a run (paper Fig. 7): the tracked first bending frequency
-from the eigen-analysis (/tracking), the dominant frequency of the tip
+from the eigen-analysis (/tracking; every followed mode when the scene
+follows several, tracking.follow), the dominant frequency of the tip
 vibration from zero crossings (independent of the eigen-analysis), and the
 paper's values (27.0 Hz retracted, 10.2 Hz fully extended). Damped models
 (the damped eigen-analysis wrote /tracking/damping_ratio) also get the
@@ -44,6 +45,14 @@ def frequency_data(f):
     return tt, fr, tc, fc, name
 
 
+def followed_data(f):
+    """(followed Hz (m, n), followed index (m, n)) of every followed mode (tracking.follow), or None
+    when the run follows one mode (or predates tracking.follow)."""
+    if "tracking/followed_hz" not in f or f["tracking/followed_hz"].shape[1] < 2:
+        return None
+    return f["tracking/followed_hz"][()], f["tracking/followed_index"][()]
+
+
 def damping_data(f):
     """(tracked damped Hz, damping ratio) of the tracked mode, or None for undamped runs."""
     if "tracking/damping_ratio" not in f:
@@ -57,11 +66,40 @@ def make_figure(run, paper=False):
         scene = boomdyn_h5.scene_name(f)
         tt, fr, tc, fc, signal = frequency_data(f)
         damped = damping_data(f)
+        followed = followed_data(f)
     fig, ax = plt.subplots(figsize=(8, 4.5))
-    ax.plot(tt, fr, "-", lw=2, label="first bending mode (eigen-analysis, tracked by MAC)")
+    if followed is None:
+        ax.plot(tt, fr, "-", lw=2, label="first bending mode (eigen-analysis, tracked by MAC)")
+    else:
+        # Every followed mode (tracking.follow), each carried by its own MAC;
+        # a log axis when they span more than a decade (pendulum and bending).
+        hz, index = followed
+        for j in range(hz.shape[1]):
+            ax.plot(tt, hz[:, j], "-", lw=2, color="C%d" % (2 * j),
+                    label="followed mode %d (eigen-analysis, MAC): %.3g -> %.3g Hz, index %d -> %d"
+                    % (j + 1, hz[0, j], hz[-1, j], index[0, j], index[-1, j]))
+        if hz.max() > 10 * max(hz.min(), 1e-12):
+            ax.set_yscale("log")
     ax.plot(tc, fc, ".", ms=3, alpha=0.6, label="zero crossings of the %s" % signal)
     lines = []
-    if damped is not None:
+    if followed is not None and damped is not None:
+        # Per followed mode its damped mode (followed_damped_*), drawn where
+        # the assignment is meaningful (damped MAC >= 0.5; a mode the damped
+        # analysis did not find gets the best of the rest, with a small MAC).
+        with boomdyn_h5.open_run(run) as f:
+            fd = f["tracking/followed_damped_hz"][()]
+            zeta = f["tracking/followed_damping_ratio"][()]
+            dmac = f["tracking/followed_damped_mac"][()]
+        right = ax.twinx()
+        for j in range(fd.shape[1]):
+            ok = dmac[:, j] >= 0.5
+            ax.plot(tt, np.where(ok, fd[:, j], np.nan), "--", lw=1, color="C%d" % (2 * j),
+                    label="followed mode %d: damped frequency (damped MAC >= 0.5)" % (j + 1))
+            lines += right.plot(tt, np.where(ok, 100.0 * zeta[:, j], np.nan), ":", lw=1.5, color="C%d" % (2 * j + 1),
+                                label="followed mode %d: damping ratio (right axis)" % (j + 1))
+        right.set_ylabel("damping ratio [%]")
+        right.set_ylim(bottom=0.0)
+    elif damped is not None:
         fd, zeta = damped
         ax.plot(tt, fd, "--", lw=1, color="C0", label="its damped frequency (damped eigen-analysis)")
         right = ax.twinx()
@@ -75,7 +113,7 @@ def make_figure(run, paper=False):
         ax.plot([PAPER["t_end"]], [PAPER["extended"]], "ks", ms=6)
     ax.set_xlabel("time [s]")
     ax.set_ylabel("frequency [Hz]")
-    ax.set_title("%s: first frequency along the run" % scene)
+    ax.set_title("%s: %s along the run" % (scene, "first frequency" if followed is None else "followed modes"))
     ax.grid(True, alpha=0.4)
     handles, labels = ax.get_legend_handles_labels()
     ax.legend(handles + lines, labels + [ln.get_label() for ln in lines], fontsize=8)

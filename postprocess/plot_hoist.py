@@ -7,8 +7,8 @@ One figure, three panels over time:
      from the sheave sensor to the hook sensor, counter-clockwise positive);
   2. the rope tension (kN) with its static value (t = 0) and its peak, and
      the dynamic factor from /summary (docs/output.md "Design numbers");
-  3. the tracked frequency (the followed mode, the payload pendulum in the
-     hoist scenes) and the other frequencies of each analysis, with the
+  3. the tracked frequencies (every followed mode: the payload pendulum and
+     the first bending mode in the hoist scenes) and the other frequencies of each analysis, with the
      swing frequency from the zero crossings of the swing angle (one point
      per half swing), an estimate independent of the eigen-analysis.
 
@@ -92,6 +92,8 @@ def plot_hoist(run, out=None, rope="hoist", sheave="tip", hook="hook", max_hz=60
         tr_t = tracking["time"][()] if tracking is not None else np.array([])
         tracked = tracking["tracked_hz"][()] if tracking is not None else np.array([])
         modes = tracking["frequencies_hz"][()] if tracking is not None else np.zeros((0, 0))
+        # Every followed mode (tracking.follow: pendulum and first bending mode), one column each.
+        followed = tracking["followed_hz"][()] if tracking is not None and "followed_hz" in tracking else None
         name = boomdyn_h5.scene_name(f)
     zc_t, zc_hz = half_swing_frequency(t, angle)
 
@@ -111,7 +113,12 @@ def plot_hoist(run, out=None, rope="hoist", sheave="tip", hook="hook", max_hz=60
         for k in range(modes.shape[1]):
             keep = modes[:, k] <= max_hz
             ax[2].plot(tr_t[keep], modes[keep, k], ".", ms=2, color="0.7", label="modes of each analysis" if k == 0 else None)
-        ax[2].plot(tr_t, tracked, "b-", lw=1.2, label="tracked (MAC)")
+        if followed is None or followed.shape[1] < 2:
+            ax[2].plot(tr_t, tracked, "b-", lw=1.2, label="tracked (MAC)")
+        else:
+            for j in range(followed.shape[1]):
+                ax[2].plot(tr_t, followed[:, j], "-", lw=1.2, color="C%d" % j,
+                           label="followed mode %d (MAC): %.3g -> %.3g Hz" % (j + 1, followed[0, j], followed[-1, j]))
     if len(zc_t):
         ax[2].plot(zc_t, zc_hz, "ro", ms=3, label="swing, zero crossings")
     ax[2].set_yscale("log")
@@ -123,6 +130,7 @@ def plot_hoist(run, out=None, rope="hoist", sheave="tip", hook="hook", max_hz=60
     plt.close(fig)
     return {"figure": out, "max_swing_deg": float(np.max(np.abs(angle))), "peak_tension_N": float(np.max(tension)),
             "static_tension_N": float(tension[0]), "design": design, "tracked_time": tr_t, "tracked_hz": tracked,
+            "followed_hz": followed,
             "swing_time": zc_t, "swing_hz": zc_hz, "swing_crossings": swing_crossings(t, angle)}
 
 

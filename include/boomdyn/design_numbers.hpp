@@ -1,7 +1,9 @@
 // Design numbers of a dynamic run (issue 16; docs/output.md "Design
 // numbers"): per rope the static tension (at t = 0), the peak and the
 // smallest tension and their ratio to the static one (dynamic factors, as
-// EN 13001-2's phi_2 for hoisting and phi_3 for a release); per clamp the
+// EN 13001-2's phi_2 for hoisting and phi_3 for a release; an elastic rope
+// that carries nothing at t = 0, a lift-off, has them relative to the weight
+// of the load it lifts); per clamp the
 // peak reaction moment (the bending moment at a boom's root); per sliding
 // joint the peak normal (contact or pad) force. Generic: built from the
 // model's output channels (groups "rope", "elastic_rope", quantity
@@ -41,7 +43,9 @@ private:
     PetscInt index;          // output channel (Tension, ContactForce) or multiplier row (Moment)
     double start = 0, peak = 0, peakTime = 0, low = 0, lowTime = 0;
     bool seen = false;
+    double loadWeight = 0; // elastic ropes: the weight of the load they lift (reference of a slack start)
   };
+  static double reference(const Item &it);
   std::vector<Item> items_;
 };
 

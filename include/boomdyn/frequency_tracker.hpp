@@ -1,9 +1,12 @@
 // Frequencies along a trajectory (docs/model.md §5): at each call the system is
-// linearized at the given state and the modes nearest half the last tracked
-// omega^2 are found (shift-and-invert, warm-started from the last tracked
-// shape); the first bending mode is followed by mode continuity, i.e. the
-// mode with the largest MAC against the previous shape, not by sorting.
-// At the first call the lowest mode with omega^2 > 0 is taken.
+// linearized at the given state and the modes nearest half the lowest
+// followed omega^2 are found (shift-and-invert, warm-started from the first
+// followed shape). Each followed mode is carried by mode continuity, i.e. the
+// mode with the largest MAC against its previous shape, not by sorting; two
+// followed modes never take the same mode (greedy assignment on the largest
+// MAC), so a followed mode keeps its identity through crossings.
+// At the first call the followed modes are the lowest `follow` modes with
+// omega^2 > 0, or the modes nearest the given frequencies (followHz).
 // After the first analysis the modes are refined from the previous ones
 // (mode_refinement.hpp) instead of solved afresh; the full solve runs at the
 // first analysis, after a restart, when refinement fails (said once), and at
@@ -19,9 +22,21 @@
 
 namespace boomdyn {
 
+// One followed mode at one analysis.
+struct FollowedMode {
+  double hz = 0;             // its frequency
+  double mac = 1;            // MAC against its previous shape (1 at the first analysis)
+  int index = 0;             // its position among the modes of the analysis (ascending)
+  std::vector<double> shape; // its shape (rank 0), max-norm 1
+  // Damped models: the damped mode assigned to it by MAC (rank 0; NaN, 0: none).
+  double dampedHz = 0, dampingRatio = 0, dampedMac = 0;
+};
+
 struct TrackedModes {
   double t = 0;
-  std::vector<double> frequencyHz; // every mode found, ascending
+  std::vector<double> frequencyHz; // the `count` lowest modes found, ascending
+  std::vector<FollowedMode> followed; // every followed mode, in the order of tracking.follow
+  // The first followed mode (= followed[0]), the fields of /tracking/tracked_hz etc.
   double trackedHz = 0;            // the followed mode
   double mac = 1;                  // MAC of the followed mode against the previous one (1 at the start)
   int index = 0;                   // its position in frequencyHz
@@ -38,16 +53,21 @@ struct TrackedModes {
 
 class FrequencyTracker {
 public:
-  FrequencyTracker(Assembler &assembler, int count, bool fullSolve = false)
-    : assembler_(assembler), count_(count), fullSolve_(fullSolve), refiner_(assembler), dampedRefiner_(assembler)
+  // follow, followHz: the followed modes (TrackingSpec): the lowest `follow`
+  // modes with omega^2 > 0 at the first analysis, or the modes nearest the
+  // frequencies followHz (Hz; then follow is their number).
+  FrequencyTracker(Assembler &assembler, int count, bool fullSolve = false, int follow = 1,
+                   std::vector<double> followHz = {})
+    : assembler_(assembler), count_(count), fullSolve_(fullSolve), follow_(followHz.empty() ? follow : (int)followHz.size()),
+      followHz_(std::move(followHz)), refiner_(assembler), dampedRefiner_(assembler)
   {
   }
 
   PetscErrorCode analyze(double t, Vec q, Vec lambda, TrackedModes *out);
   // After analyze() at the same state: the damped modes (`count` lowest
-  // oscillating, solveDampedModes with allowFewer) and, in out, the one whose
-  // shape (real part) has the largest MAC against the followed undamped
-  // shape (rank 0). Refined from the undamped modes of analyze() unless
+  // oscillating, solveDampedModes with allowFewer) and, in out, for each
+  // followed mode the one whose shape (real part) has the largest MAC against
+  // its undamped shape (rank 0; greedy assignment like the undamped modes). Refined from the undamped modes of analyze() unless
   // fullSolve; a full PEP solve when refinement fails (said once). modes:
   // optional, receives the damped modes with their vectors.
   PetscErrorCode analyzeDamped(double t, Vec q, Vec lambda, TrackedModes *out, DampedModalResult *modes = nullptr);
@@ -60,21 +80,33 @@ public:
   const std::vector<PetscHandle<Vec>> &basis() const { return basis_; }
 
 private:
-  // Full eigen-solve for nev pairs; basis_ = their vectors; the first count_ reported.
-  PetscErrorCode solveFully(double t, Vec q, Vec lambda, double target, Vec guess, std::vector<double> *omega2);
+  // Full eigen-solve; basis_ = the vectors; the first `wanted` omega^2 returned.
+  PetscErrorCode solveFully(double t, Vec q, Vec lambda, double target, Vec guess, int wanted,
+                            std::vector<double> *omega2);
+  // The followed modes at the first analysis (positions in omega2).
+  PetscErrorCode firstPicks(double t, const std::vector<double> &omega2, std::vector<int> *picks) const;
 
   Assembler &assembler_;
   int count_;
   bool fullSolve_;
+  int follow_;                    // number of followed modes
+  std::vector<double> followHz_;  // their frequencies at the first analysis (empty: the lowest)
   ModeRefiner refiner_;
   DampedModeRefiner dampedRefiner_;
   std::vector<PetscHandle<Vec>> basis_; // the last analysis' vectors (refinement's start)
   bool fallbackReported_ = false, dampedFallbackReported_ = false;
   bool pencilCurrent_ = false; // refiner_ holds the pencil and factorization of the last analysis' state
   double target_ = 0;          // the last analysis' shift
-  PetscHandle<Vec> previous_; // the followed shape (none before the first analysis)
-  double previousOmega2_ = 0;
+  int wanted_ = 0;                // modes for the next analysis besides count_: one above every followed mode
+  int found_ = 0;                 // modes of the last analysis (the damped analysis finds as many)
+  std::vector<PetscHandle<Vec>> previous_; // the followed shapes (none before the first analysis)
+  std::vector<double> previousOmega2_;
 };
+
+// Greedy assignment on the largest MAC: mac[j][k] of followed mode j against
+// candidate k; each j gets a different k (the pair of largest MAC first, ties
+// to the lower j, k), -1 when no candidate with MAC > floor is left.
+std::vector<int> assignByMac(const std::vector<std::vector<double>> &mac, double floor);
 
 // MAC = (a.b)^2 / ((a.a)(b.b)), collective.
 PetscErrorCode modalAssurance(Vec a, Vec b, double *mac);

@@ -70,6 +70,8 @@ public:
   }
 
 private:
+  // The /tracking/followed_* columns of appendTracking (rank 0).
+  void appendFollowed(const TrackedModes &modes, bool writeShape);
   PetscErrorCode gather(Vec v, std::vector<double> &out);
   // ParaView: booms sampled inside the elements at each state snapshot (rank 0),
   // and the XDMF file beside the results that describes them.

@@ -67,11 +67,17 @@ struct ModalSpec {
 
 // Eigen-analysis along a dynamic run (docs/model.md §5): every `interval` seconds
 // the system is linearized at the current state and `count` modes are found;
-// the first bending mode is followed by mode continuity (MAC).
+// the followed modes are carried by mode continuity (MAC).
 struct TrackingSpec {
   double interval = 0;           // s; 0: no tracking
   int count = 4;                 // modes per analysis
   std::vector<double> shapesAt;  // times (s) at which the tracked shape is written
+  // The followed modes (key `follow`): at the first analysis the lowest
+  // `follow` modes with omega^2 > 0, or, when followHz is given, for each of
+  // its frequencies the mode nearest it (a different mode each). The first
+  // followed mode is the one of /tracking/tracked_hz.
+  int follow = 1;
+  std::vector<double> followHz;  // Hz; empty: the lowest `follow` modes
 };
 
 struct OutputSpec {

@@ -17,12 +17,43 @@ PetscErrorCode modalAssurance(Vec a, Vec b, double *mac)
   PetscFunctionReturn(0);
 }
 
+std::vector<int> assignByMac(const std::vector<std::vector<double>> &mac, double floor)
+{
+  const std::size_t n = mac.size(), m = n ? mac[0].size() : 0;
+  std::vector<int> pick(n, -1);
+  std::vector<bool> taken(m, false);
+  for (std::size_t round = 0; round < n; ++round) {
+    double best = floor;
+    int bj = -1, bk = -1;
+    for (std::size_t j = 0; j < n; ++j) {
+      if (pick[j] >= 0) continue;
+      for (std::size_t k = 0; k < m; ++k)
+        if (!taken[k] && mac[j][k] > best) best = mac[j][k], bj = (int)j, bk = (int)k;
+    }
+    if (bj < 0) break;
+    pick[bj] = bk;
+    taken[bk] = true;
+  }
+  return pick;
+}
+
+// Checkpoint names: the first followed mode keeps the names of the
+// single-mode tracker, the others get a suffix.
+static std::string followedName(const std::string &base, std::size_t j)
+{
+  return j == 0 ? base : base + "_" + std::to_string(j);
+}
+
 PetscErrorCode FrequencyTracker::save(StateWriter &out) const
 {
   PetscFunctionBeginUser;
-  out.addScalar("tracker.started", previous_ ? 1.0 : 0.0);
-  out.addScalar("tracker.omega2", previousOmega2_);
-  if (previous_) PetscCall(out.addVector("tracker.shape", previous_));
+  out.addScalar("tracker.started", previous_.empty() ? 0.0 : 1.0);
+  out.addScalar("tracker.followed", (double)previous_.size());
+  out.addScalar("tracker.wanted", (double)wanted_);
+  for (std::size_t j = 0; j < std::max<std::size_t>(1, previous_.size()); ++j)
+    out.addScalar(followedName("tracker.omega2", j), j < previousOmega2_.size() ? previousOmega2_[j] : 0.0);
+  for (std::size_t j = 0; j < previous_.size(); ++j)
+    PetscCall(out.addVector(followedName("tracker.shape", j), previous_[j]));
   // The refinement's start, so that a restarted run refines from the same
   // vectors as the uninterrupted one (bitwise equal results on one rank).
   out.addScalar("tracker.basis_size", (double)basis_.size());
@@ -34,11 +65,21 @@ PetscErrorCode FrequencyTracker::save(StateWriter &out) const
 PetscErrorCode FrequencyTracker::restore(const StateReader &in)
 {
   PetscFunctionBeginUser;
+  previous_.clear();
+  previousOmega2_.clear();
   if (in.scalar("tracker.started") != 0.0) {
-    if (!previous_) PetscCall(assembler_.createVector(previous_.address()));
-    PetscCall(in.getVector("tracker.shape", previous_));
+    const int n = in.hasScalar("tracker.followed") ? (int)in.scalar("tracker.followed") : 1;
+    PetscCheck(n == follow_, assembler_.comm(), PETSC_ERR_USER_INPUT,
+               "the checkpoint follows %d modes, the scene (tracking.follow) %d", n, follow_);
+    for (int j = 0; j < n; ++j) {
+      PetscHandle<Vec> v;
+      PetscCall(assembler_.createVector(v.address()));
+      PetscCall(in.getVector(followedName("tracker.shape", j), v));
+      previous_.push_back(std::move(v));
+      previousOmega2_.push_back(in.scalar(followedName("tracker.omega2", j)));
+    }
   }
-  previousOmega2_ = in.scalar("tracker.omega2");
+  wanted_ = in.hasScalar("tracker.wanted") ? (int)in.scalar("tracker.wanted") : count_;
   basis_.clear();
   const int m = static_cast<int>(in.scalar("tracker.basis_size"));
   for (int k = 0; k < m; ++k) {
@@ -50,7 +91,7 @@ PetscErrorCode FrequencyTracker::restore(const StateReader &in)
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode FrequencyTracker::solveFully(double t, Vec q, Vec lambda, double target, Vec guess,
+PetscErrorCode FrequencyTracker::solveFully(double t, Vec q, Vec lambda, double target, Vec guess, int wanted,
                                             std::vector<double> *omega2)
 {
   PetscFunctionBeginUser;
@@ -62,26 +103,69 @@ PetscErrorCode FrequencyTracker::solveFully(double t, Vec q, Vec lambda, double 
   // ones converge in it at the rate (w_k - tau) / (w_m+1 - tau) only when
   // the subspace holds more than them.
   const PetscInt bound = finiteModeBound(assembler_.model());
-  const int nev = fullSolve_ ? count_ : (int)std::min<PetscInt>(bound, count_ + std::max(2, count_ / 2));
+  const int nev = fullSolve_ ? wanted : (int)std::min<PetscInt>(bound, wanted + std::max(2, wanted / 2));
   ModalResult modes;
   PetscCall(solveModes(assembler_, t, q, lambda, nev, &modes, options));
   basis_ = std::move(modes.vectors);
-  omega2->assign(modes.omega2.begin(), modes.omega2.begin() + count_);
+  omega2->assign(modes.omega2.begin(), modes.omega2.begin() + std::min<std::size_t>(wanted, modes.omega2.size()));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode FrequencyTracker::firstPicks(double t, const std::vector<double> &omega2, std::vector<int> *picks) const
+{
+  PetscFunctionBeginUser;
+  // Skip rigid-body modes of a mechanism (omega^2 ~ 0 relative to the spectrum).
+  int first = 0;
+  const double scale = std::abs(omega2.back());
+  while (first + 1 < (int)omega2.size() && omega2[first] <= 1e-8 * scale) ++first;
+  const auto hz = [&](int k) { return std::sqrt(std::max(omega2[k], 0.0)) / (2.0 * M_PI); };
+  picks->clear();
+  if (followHz_.empty()) {
+    PetscCheck(first + follow_ <= (int)omega2.size(), assembler_.comm(), PETSC_ERR_USER_INPUT,
+               "tracking.follow: the first analysis (t = %g s) found %d modes with omega^2 > 0, fewer than the %d "
+               "to follow: raise tracking.count",
+               t, (int)omega2.size() - first, follow_);
+    for (int j = 0; j < follow_; ++j) picks->push_back(first + j);
+    PetscFunctionReturn(0);
+  }
+  // The mode nearest each given frequency (in ratio), a different one each:
+  // the same greedy assignment as by MAC, on the closeness 1 / (1 + |ln(f_k / f_j)|).
+  std::vector<std::vector<double>> closeness(followHz_.size(), std::vector<double>(omega2.size(), -1.0));
+  for (std::size_t j = 0; j < followHz_.size(); ++j)
+    for (int k = first; k < (int)omega2.size(); ++k)
+      closeness[j][k] = 1.0 / (1.0 + std::abs(std::log(hz(k) / followHz_[j])));
+  *picks = assignByMac(closeness, 0.0);
+  for (std::size_t j = 0; j < followHz_.size(); ++j) {
+    const int k = (*picks)[j];
+    // Within a factor of 2: otherwise the asked mode is evidently not among the modes found.
+    PetscCheck(k >= 0 && std::abs(std::log(hz(k) / followHz_[j])) <= std::log(2.0), assembler_.comm(),
+               PETSC_ERR_USER_INPUT,
+               "tracking.follow: no mode within a factor of 2 of %g Hz among the %d modes of the first analysis "
+               "(t = %g s, %g ... %g Hz): raise tracking.count or change tracking.follow",
+               followHz_[j], (int)omega2.size(), t, hz(first), hz((int)omega2.size() - 1));
+  }
   PetscFunctionReturn(0);
 }
 
 PetscErrorCode FrequencyTracker::analyze(double t, Vec q, Vec lambda, TrackedModes *out)
 {
   PetscFunctionBeginUser;
-  // Below the followed eigenvalue, so that it and its neighbours are the nearest.
-  const double target = previous_ ? 0.5 * previousOmega2_ : ModalOptions{}.target;
+  const bool started = !previous_.empty();
+  // Below the lowest followed eigenvalue, so that the followed modes and
+  // their neighbours are the nearest.
+  const double target =
+      started ? 0.5 * *std::min_element(previousOmega2_.begin(), previousOmega2_.end()) : ModalOptions{}.target;
+  // Modes to find: count_, and at least one above every followed mode, so
+  // that a mode crossing the highest followed one from above is seen.
+  const int wanted = std::max(count_, (int)std::min<PetscInt>(finiteModeBound(assembler_.model()), wanted_));
+  found_ = wanted;
   std::vector<double> omega2;
   bool refined = false;
   pencilCurrent_ = false;
   target_ = target;
-  if (!fullSolve_ && previous_ && (int)basis_.size() >= count_) {
+  if (!fullSolve_ && started && (int)basis_.size() >= wanted) {
     RefinedModes r;
-    PetscCall(refiner_.refine(t, q, lambda, target, count_, basis_, &r, &refined));
+    PetscCall(refiner_.refine(t, q, lambda, target, wanted, basis_, &r, &refined));
     pencilCurrent_ = refiner_.factoredAtLastPrepare();
     if (refined) {
       omega2 = r.omega2;
@@ -93,41 +177,56 @@ PetscErrorCode FrequencyTracker::analyze(double t, Vec q, Vec lambda, TrackedMod
                             t, r.worstResidual, r.iterations));
     }
   }
-  if (!refined) PetscCall(solveFully(t, q, lambda, target, previous_ ? previous_.get() : nullptr, &omega2));
+  if (!refined) PetscCall(solveFully(t, q, lambda, target, started ? previous_[0].get() : nullptr, wanted, &omega2));
 
-  // Candidates for the followed mode: the reported modes, multipliers dropped.
+  // Candidates for the followed modes: the modes found, multipliers dropped.
   PetscHandle<Vec> zero, candidate;
   PetscCall(VecDuplicate(basis_[0], zero.address()));
   PetscCall(VecSet(zero, 0.0));
   PetscCall(VecDuplicate(basis_[0], candidate.address()));
-  int pick = 0;
-  double best = 1.0;
-  if (!previous_) {
-    // Skip rigid-body modes of a mechanism (omega^2 ~ 0 relative to the spectrum).
-    const double scale = std::abs(omega2.back());
-    while (pick + 1 < (int)omega2.size() && omega2[pick] <= 1e-8 * scale) ++pick;
-    PetscCall(VecDuplicate(basis_[0], previous_.address()));
+  std::vector<int> picks;
+  std::vector<double> macs(follow_, 1.0);
+  if (!started) {
+    PetscCall(firstPicks(t, omega2, &picks));
+    for (int j = 0; j < follow_; ++j) {
+      previous_.emplace_back();
+      PetscCall(VecDuplicate(basis_[0], previous_.back().address()));
+    }
+    previousOmega2_.assign(follow_, 0.0);
   } else {
-    best = -1.0;
-    for (int k = 0; k < count_; ++k) {
-      double mac;
+    std::vector<std::vector<double>> mac(follow_, std::vector<double>(omega2.size()));
+    for (std::size_t k = 0; k < omega2.size(); ++k) {
       PetscCall(VecCopy(basis_[k], candidate));
       PetscCall(assembler_.copyMultipliers(zero, candidate, 0.0));
-      PetscCall(modalAssurance(previous_, candidate, &mac));
-      if (mac > best) best = mac, pick = k;
+      for (int j = 0; j < follow_; ++j) PetscCall(modalAssurance(previous_[j], candidate, &mac[j][k]));
     }
+    picks = assignByMac(mac, -1.0);
+    for (int j = 0; j < follow_; ++j) macs[j] = mac[j][picks[j]];
   }
-  PetscCall(VecCopy(basis_[pick], previous_));
-  PetscCall(assembler_.copyMultipliers(zero, previous_, 0.0));
-  previousOmega2_ = omega2[pick];
   out->t = t;
   out->frequencyHz.clear();
-  for (double w : omega2) out->frequencyHz.push_back(std::sqrt(std::max(w, 0.0)) / (2.0 * M_PI));
-  out->trackedHz = out->frequencyHz[pick];
-  out->mac = best;
-  out->index = pick;
+  for (std::size_t k = 0; k < std::min<std::size_t>(count_, omega2.size()); ++k)
+    out->frequencyHz.push_back(std::sqrt(std::max(omega2[k], 0.0)) / (2.0 * M_PI));
+  out->followed.assign(follow_, FollowedMode{});
+  int highest = 0;
+  for (int j = 0; j < follow_; ++j) {
+    const int k = picks[j];
+    PetscCall(VecCopy(basis_[k], previous_[j]));
+    PetscCall(assembler_.copyMultipliers(zero, previous_[j], 0.0));
+    previousOmega2_[j] = omega2[k];
+    FollowedMode &f = out->followed[j];
+    f.hz = std::sqrt(std::max(omega2[k], 0.0)) / (2.0 * M_PI);
+    f.mac = macs[j];
+    f.index = k;
+    PetscCall(gatherShape(assembler_, previous_[j], &f.shape));
+    highest = std::max(highest, k);
+  }
+  wanted_ = highest + 2;
+  out->trackedHz = out->followed[0].hz;
+  out->mac = out->followed[0].mac;
+  out->index = out->followed[0].index;
   out->refined = refined;
-  PetscCall(gatherShape(assembler_, previous_, &out->shape));
+  out->shape = out->followed[0].shape;
   PetscFunctionReturn(0);
 }
 
@@ -143,7 +242,7 @@ PetscErrorCode FrequencyTracker::analyzeDamped(double t, Vec q, Vec lambda, Trac
     DampedRefinementInfo info;
     if (factored)
       PetscCall(dampedRefiner_.refine(t, q, lambda, refiner_.stiffness(), refiner_.mass(), refiner_.shiftedSolver(),
-                                      basis_, count_, &dm, &info, &refined));
+                                      basis_, found_, &dm, &info, &refined));
     if (!refined && !dampedFallbackReported_) {
       dampedFallbackReported_ = true;
       PetscCall(PetscPrintf(assembler_.comm(),
@@ -157,27 +256,35 @@ PetscErrorCode FrequencyTracker::analyzeDamped(double t, Vec q, Vec lambda, Trac
     DampedModalOptions options;
     options.allowFewer = true; // heavy damping: few oscillating modes (damped_eigen_solver.hpp)
     options.keepVectors = modes != nullptr;
-    PetscCall(solveDampedModes(assembler_, t, q, lambda, count_, &dm, options));
+    PetscCall(solveDampedModes(assembler_, t, q, lambda, found_, &dm, options));
   }
   out->damped = true;
   out->dampedRefined = refined;
-  // No oscillating damped mode found: NaN in the file.
-  out->trackedDampedHz = out->trackedDampingRatio = std::nan("");
-  out->dampedMac = 0;
   const auto dot = [](const std::vector<double> &a, const std::vector<double> &b) {
     double d = 0;
     for (std::size_t i = 0; i < std::min(a.size(), b.size()); ++i) d += a[i] * b[i];
     return d;
   };
-  for (std::size_t k = 0; k < dm.shapes.size(); ++k) { // rank 0 holds the shapes
-    const double ab = dot(dm.shapes[k], out->shape);
-    const double mac = ab * ab / (dot(dm.shapes[k], dm.shapes[k]) * dot(out->shape, out->shape));
-    if (mac > out->dampedMac) {
-      out->dampedMac = mac;
-      out->trackedDampedHz = dm.dampedOmega[k] / (2.0 * M_PI);
-      out->trackedDampingRatio = dm.dampingRatio[k];
+  // Each followed mode gets the damped mode of largest MAC against its shape
+  // (rank 0 holds the shapes), a different one each; none found: NaN in the file.
+  std::vector<std::vector<double>> mac(out->followed.size(), std::vector<double>(dm.shapes.size()));
+  for (std::size_t j = 0; j < out->followed.size(); ++j)
+    for (std::size_t k = 0; k < dm.shapes.size(); ++k) {
+      const std::vector<double> &x = out->followed[j].shape;
+      const double ab = dot(dm.shapes[k], x);
+      mac[j][k] = ab * ab / (dot(dm.shapes[k], dm.shapes[k]) * dot(x, x));
     }
+  const std::vector<int> picks = assignByMac(mac, 0.0);
+  for (std::size_t j = 0; j < out->followed.size(); ++j) {
+    FollowedMode &f = out->followed[j];
+    const int k = picks[j];
+    f.dampedHz = k < 0 ? std::nan("") : dm.dampedOmega[k] / (2.0 * M_PI);
+    f.dampingRatio = k < 0 ? std::nan("") : dm.dampingRatio[k];
+    f.dampedMac = k < 0 ? 0.0 : mac[j][k];
   }
+  out->trackedDampedHz = out->followed[0].dampedHz;
+  out->trackedDampingRatio = out->followed[0].dampingRatio;
+  out->dampedMac = out->followed[0].dampedMac;
   if (modes) *modes = std::move(dm);
   PetscFunctionReturn(0);
 }

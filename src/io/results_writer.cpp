@@ -441,9 +441,33 @@ PetscErrorCode ResultsWriter::appendTracking(const TrackedModes &m, bool writeSh
       file_->appendScalar("/tracking/shape_time", m.t);
       file_->appendRow("/tracking/shapes", m.shape.data(), m.shape.size());
     }
+    appendFollowed(m, writeShape);
   }));
   PetscCall(PetscLogEventEnd(logEvents().output, 0, 0, 0, 0));
   PetscFunctionReturn(0);
+}
+
+// Every followed mode (tracking.follow), one column each (docs/output.md).
+void ResultsWriter::appendFollowed(const TrackedModes &m, bool writeShape)
+{
+  const std::size_t n = m.followed.size();
+  std::vector<double> hz(n), mac(n), dampedHz(n), ratio(n), dampedMac(n), shapes;
+  std::vector<int> index(n);
+  for (std::size_t j = 0; j < n; ++j) {
+    const FollowedMode &f = m.followed[j];
+    hz[j] = f.hz, mac[j] = f.mac, index[j] = f.index;
+    dampedHz[j] = f.dampedHz, ratio[j] = f.dampingRatio, dampedMac[j] = f.dampedMac;
+    if (writeShape) shapes.insert(shapes.end(), f.shape.begin(), f.shape.end());
+  }
+  file_->appendRow("/tracking/followed_hz", hz.data(), n);
+  file_->appendRow("/tracking/followed_mac", mac.data(), n);
+  file_->appendRow("/tracking/followed_index", index.data(), n);
+  if (m.damped) {
+    file_->appendRow("/tracking/followed_damped_hz", dampedHz.data(), n);
+    file_->appendRow("/tracking/followed_damping_ratio", ratio.data(), n);
+    file_->appendRow("/tracking/followed_damped_mac", dampedMac.data(), n);
+  }
+  if (writeShape) file_->appendRow("/tracking/followed_shapes", shapes.data(), shapes.size());
 }
 
 PetscErrorCode ResultsWriter::finish(const std::string &status, PetscInt steps, PetscInt rejected, double wallTime,

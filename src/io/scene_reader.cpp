@@ -48,7 +48,32 @@ private:
   StaticSpec parseStatic(const Field &f) const;
   ModalSpec parseModal(const Field &f, bool required_nonzero) const;
   void parseOutput(const Field &f, Scene &scene) const;
+  void parseFollow(const Field &f, TrackingSpec &tracking) const;
 };
+
+// tracking.follow: a number of lowest modes, or a list of frequencies (Hz)
+// near which the followed modes are at the first analysis.
+void SceneParser::parseFollow(const Field &f, TrackingSpec &tracking) const
+{
+  const std::string count = " (tracking.count is " + std::to_string(tracking.count) + ")";
+  if (f.node.IsSequence()) {
+    for (const Field &item : list(f)) tracking.followHz.push_back(positive(item));
+    if (tracking.followHz.empty()) report_.fail(f, "needs at least one frequency (Hz)");
+    for (std::size_t i = 0; i < tracking.followHz.size(); ++i)
+      for (std::size_t j = 0; j < i; ++j)
+        if (tracking.followHz[i] == tracking.followHz[j])
+          report_.fail(f, "lists the frequency " + numberText(tracking.followHz[i]) + " Hz twice");
+    tracking.follow = static_cast<int>(tracking.followHz.size());
+    if (tracking.follow > tracking.count)
+      report_.fail(f, "follows " + std::to_string(tracking.follow) + " modes but each analysis finds only count" +
+                          " of them" + count + ": raise tracking.count");
+  } else {
+    tracking.follow = integer(f, 1, 100);
+    if (tracking.follow > tracking.count)
+      report_.fail(f, "follows the lowest " + std::to_string(tracking.follow) + " modes but each analysis finds only " +
+                          "count of them" + count + ": raise tracking.count");
+  }
+}
 
 void SceneParser::parse(const Field &root, Scene &scene)
 {
@@ -101,11 +126,12 @@ void SceneParser::parse(const Field &root, Scene &scene)
   if (const auto tr = top.get("tracking")) {
     if (scene.analysis != Scene::Analysis::Dynamic)
       report_.fail(*tr, "frequency tracking needs 'analysis: dynamic'");
-    const MapView m(report_, *tr, {"interval", "count", "shapes_at"});
+    const MapView m(report_, *tr, {"interval", "count", "shapes_at", "follow"});
     scene.tracking.interval = positive(m.require("interval"));
     if (const auto c = m.get("count")) scene.tracking.count = integer(*c, 1, 100);
     if (const auto sa = m.get("shapes_at"))
       for (const Field &item : list(*sa)) scene.tracking.shapesAt.push_back(nonNegative(item));
+    if (const auto fo = m.get("follow")) parseFollow(*fo, scene.tracking);
   }
   if (const auto o = top.get("output"))
     parseOutput(*o, scene);

@@ -9,13 +9,49 @@
 
 namespace boomdyn {
 
+namespace {
+
+// The weight of the load an elastic rope lifts (EN 13001-2: phi_2 is the
+// peak over the hoist load's weight): m g / n, m the mass of the body at the
+// rope's far end (`to`: its rhoA L and every point mass on it at t = 0), n
+// the falls that carry it (1 + the rope's sheaves on that body: a rope
+// reeved through a sheave on the hook block carries it on two falls).
+// Only for a rope on a winch (a hoist rope: the winch lifts the load); 0
+// for other ropes (an inextensible rope of the mechanism, or a telescoping
+// rope that a static start leaves slack).
+double hangingLoadWeight(const Scene &scene, const std::string &group, const std::string &rope)
+{
+  if (group != "elastic_rope") return 0;
+  const auto spec = std::find_if(scene.constraints.begin(), scene.constraints.end(), [&](const ComponentSpec &c) {
+    return c.type == "elastic_rope" && c.name == rope;
+  });
+  if (spec == scene.constraints.end() || !spec->has("winch")) return 0;
+  const std::string load = spec->text("to");
+  double mass = 0;
+  for (const BodySpec &b : scene.bodies)
+    if (b.name == load) mass += b.section.rhoA * b.length;
+  for (const ComponentSpec &m : scene.masses)
+    if (m.text("body") == load) mass += m.number("mass");
+  int falls = 1;
+  for (const char *pulley : {"pulley", "pulley2"})
+    falls += spec->has(pulley) && spec->text(pulley) == load;
+  if (spec->has("pulleys"))
+    for (std::size_t i = 0; spec->map("pulleys").has(std::to_string(i)); ++i)
+      falls += spec->map("pulleys").map(std::to_string(i)).text("body") == load;
+  return mass * std::hypot(scene.gravity[0], scene.gravity[1]) / falls;
+}
+
+} // namespace
+
 DesignNumbers::DesignNumbers(const Model &model)
 {
   const auto &channels = model.outputChannels();
   for (std::size_t k = 0; k < channels.size(); ++k) {
     const OutputChannel &ch = channels[k];
-    if ((ch.group == "rope" || ch.group == "elastic_rope") && ch.quantity == "tension")
+    if ((ch.group == "rope" || ch.group == "elastic_rope") && ch.quantity == "tension") {
       items_.push_back({Kind::Tension, ch.group, ch.name, static_cast<PetscInt>(k)});
+      items_.back().loadWeight = hangingLoadWeight(model.scene(), ch.group, ch.name);
+    }
     else if (ch.group == "joint_resultants" && ch.quantity == "normal_force")
       items_.push_back({Kind::ContactForce, ch.group, ch.name, static_cast<PetscInt>(k)});
   }
@@ -73,6 +109,16 @@ bool hasStaticTension(double start, double peak, double low)
 }
 } // namespace
 
+// The tension the dynamic factors are relative to: the static tension (at
+// t = 0), or for an elastic rope that carries nothing at t = 0 (a load
+// resting on the ground: lift-off) the weight of the load it lifts; NaN for
+// other ropes without a static tension.
+double DesignNumbers::reference(const Item &it)
+{
+  if (hasStaticTension(it.start, it.peak, it.low)) return it.start;
+  return it.loadWeight > 0 ? it.loadWeight : std::nan("");
+}
+
 std::vector<std::pair<std::string, double>> DesignNumbers::attributes() const
 {
   std::vector<std::pair<std::string, double>> out;
@@ -86,9 +132,11 @@ std::vector<std::pair<std::string, double>> DesignNumbers::attributes() const
       out.push_back({p + "peak_tension_time_s", it.peakTime});
       out.push_back({p + "min_tension_N", it.low});
       out.push_back({p + "min_tension_time_s", it.lowTime});
-      // Without a static tension (a slack start) the factors are not defined: NaN.
-      out.push_back({p + "dynamic_factor", hasStaticTension(it.start, it.peak, it.low) ? it.peak / it.start : std::nan("")});
-      out.push_back({p + "min_factor", hasStaticTension(it.start, it.peak, it.low) ? it.low / it.start : std::nan("")});
+      // A slack start: the factors are relative to the lifted load's weight (stored as such).
+      if (!hasStaticTension(it.start, it.peak, it.low) && it.loadWeight > 0)
+        out.push_back({p + "load_weight_N", it.loadWeight});
+      out.push_back({p + "dynamic_factor", it.peak / reference(it)});
+      out.push_back({p + "min_factor", it.low / reference(it)});
       break;
     case Kind::Moment:
       out.push_back({p + "peak_root_moment_Nm", it.peak});
@@ -118,6 +166,12 @@ std::string DesignNumbers::report() const
                       "minimum %.6g N at t = %.4g s (%.4f)\n",
                       it.group.c_str(), it.name.c_str(), it.start, it.peak, it.peakTime, it.peak / it.start, it.low,
                       it.lowTime, it.low / it.start);
+      else if (it.loadWeight > 0)
+        std::snprintf(line, sizeof line,
+                      "  %s '%s': tension %.6g N at t = 0 (slack start: factors over the lifted load's weight %.6g N), "
+                      "peak %.6g N at t = %.4g s (dynamic factor %.4f), minimum %.6g N at t = %.4g s (%.4f)\n",
+                      it.group.c_str(), it.name.c_str(), it.start, it.loadWeight, it.peak, it.peakTime,
+                      it.peak / it.loadWeight, it.low, it.lowTime, it.low / it.loadWeight);
       else
         std::snprintf(line, sizeof line,
                       "  %s '%s': tension %.6g N at t = 0 (no static tension: no dynamic factor), peak %.6g N at "

@@ -26,8 +26,9 @@ PetscErrorCode FrequencyTracking::setUp()
   // -boom_tracking_full: a full eigen-solve (and for damped models a full
   // PEP solve) at every analysis instead of refining the previous modes (the
   // reference path; docs/model.md §5).
-  tracker_ = std::make_unique<FrequencyTracker>(sim_.assembler(), sim_.scene().tracking.count,
-                                                sim_.options().trackingFullSolve);
+  const TrackingSpec &spec = sim_.scene().tracking;
+  tracker_ = std::make_unique<FrequencyTracker>(sim_.assembler(), spec.count, sim_.options().trackingFullSolve,
+                                                spec.follow, spec.followHz);
   PetscFunctionReturn(0);
 }
 
@@ -53,9 +54,9 @@ PetscErrorCode FrequencyTracking::track(const RunState &s, double h)
 }
 
 // The damped modes (docs/model.md §5, "Damped modes" and "Damped
-// refinement") at the state of the analysis just made; the damped mode is the
-// one whose shape (real part of the coordinate part) has the largest MAC
-// against the followed undamped shape (FrequencyTracker::analyzeDamped).
+// refinement") at the state of the analysis just made; each followed mode's
+// damped mode is the one whose shape (real part of the coordinate part) has
+// the largest MAC against its undamped shape (FrequencyTracker::analyzeDamped).
 PetscErrorCode FrequencyTracking::trackDamped(const RunState &s, TrackedModes *modes)
 {
   PetscFunctionBeginUser;

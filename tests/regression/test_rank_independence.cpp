@@ -228,7 +228,8 @@ std::vector<double> trackedAlongExtraction(MPI_Comm comm)
   const Scene scene = shortenedExtraction(0.4);
   HandIntegration run(scene, comm);
   GeneralizedAlpha &integrator = *run.integrator;
-  FrequencyTracker tracker(run.assembler, 4);
+  // Two followed modes (tracking.follow: 2): each by its own MAC, on every rank count alike.
+  FrequencyTracker tracker(run.assembler, 4, false, 2);
   std::vector<double> out;
   double next = 0.0;
   auto onStep = [&](const StepInfo &s) -> PetscErrorCode {
@@ -237,6 +238,7 @@ std::vector<double> trackedAlongExtraction(MPI_Comm comm)
       TrackedModes m;
       PetscCall(tracker.analyze(s.t, integrator.positions(), integrator.multipliers(), &m));
       out.insert(out.end(), m.frequencyHz.begin(), m.frequencyHz.end());
+      for (const FollowedMode &f : m.followed) out.insert(out.end(), {f.hz, 1.0 + f.index});
       next += 0.1;
     }
     PetscFunctionReturn(0);

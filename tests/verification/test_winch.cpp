@@ -15,7 +15,10 @@
 //  - Steps land on both breakpoints (the events of the restart are exact).
 #include "support.hpp"
 
+#include "boomdyn/design_numbers.hpp"
+
 #include <cmath>
+#include <map>
 
 using namespace boomdyn;
 using namespace boomdyn::testing;
@@ -172,7 +175,8 @@ constraints:
 dynamic: {t_end: 0.1, dt: 2.0e-5, rho_inf: 1.0}
 )",
                 y0, -y0);
-  const DynamicHistory run = runDynamic(parseScene(text, "lift-off.yaml"));
+  const Scene scene = parseScene(text, "lift-off.yaml");
+  const DynamicHistory run = runDynamic(scene);
   ASSERT_TRUE(run.summary.completed) << run.summary.failure;
   PetscMPIInt rank;
   MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
@@ -208,6 +212,25 @@ dynamic: {t_end: 0.1, dt: 2.0e-5, rho_inf: 1.0}
   EXPECT_LT(groundBefore, 1e-6 * m * g);
   EXPECT_NEAR(liftOff, liftRef, 2e-3 * tau1);
   EXPECT_NEAR(peak, peakRef, 0.02 * peakRef);
+
+  // The design numbers of the run (docs/output.md "Design numbers"): the rope
+  // carries nothing at t = 0, so its dynamic factor is relative to the
+  // weight of the load it lifts, m g (EN 13001-2's phi_2):
+  // phi_2 = peak / (m g) = 1 + v sqrt(k m) / (m g), within the same 2 %.
+  const Model model(scene);
+  DesignNumbers design(model);
+  for (std::size_t s = 0; s < run.time.size(); ++s) design.update(run.time[s], run.outputs[s], run.multipliers[s]);
+  std::map<std::string, double> d;
+  for (const auto &[name, value] : design.attributes()) d[name] = value;
+  const std::string p = "design.elastic_rope.hoist.";
+  ASSERT_TRUE(d.count(p + "load_weight_N"));
+  const double phi2 = 1 + v * std::sqrt(k * m) / (m * g);
+  PetscPrintf(PETSC_COMM_SELF, "%s  phi_2 = %.5f vs 1 + v sqrt(k m) / (m g) = %.5f (rel. %.2e)\n", design.report().c_str(),
+              d.at(p + "dynamic_factor"), phi2, std::abs(d.at(p + "dynamic_factor") / phi2 - 1));
+  EXPECT_LT(std::abs(d.at(p + "static_tension_N")), 1e-6 * m * g); // slack start
+  EXPECT_DOUBLE_EQ(d.at(p + "load_weight_N"), m * g);
+  EXPECT_DOUBLE_EQ(d.at(p + "dynamic_factor"), peak / (m * g));
+  EXPECT_NEAR(d.at(p + "dynamic_factor"), phi2, 0.02 * phi2);
 }
 
 // The list form `pulleys: [{body, at}, ...]`: the same two sheaves as
