@@ -65,13 +65,15 @@ PetscErrorCode ModeRefiner::refine(double t, Vec q, Vec lambda, double target, i
   if (!blocks_.ready()) PetscCall(blocks_.setUp(basis[0]));
   const PetscInt n = blocks_.localSize();
   Eigen::MatrixXd V(n, m), BV(n, m), W(n, m), AW(n, m), BW(n, m), R(n, count);
-  for (int j = 0; j < m; ++j) PetscCall(blocks_.fromVec(basis[j], V.col(j).data()));
+  for (int j = 0; j < m; ++j) {
+    PetscCall(blocks_.fromVec(basis[j], V.col(j).data()));
+    PetscCall(blocks_.multiply(B_, V.col(j).data(), BV.col(j).data()));
+  }
   Eigen::MatrixXd GA, GB;
   Eigen::VectorXd an, rn;
   bool solved = true;
   for (int it = 1; it <= maxIterations; ++it) {
     for (int j = 0; j < m && solved; ++j) {
-      PetscCall(blocks_.multiply(B_, V.col(j).data(), BV.col(j).data()));
       PetscCall(blocks_.solve(ksp_, BV.col(j).data(), W.col(j).data(), &solved));
       PetscCall(blocks_.multiply(A_, W.col(j).data(), AW.col(j).data()));
       PetscCall(blocks_.multiply(B_, W.col(j).data(), BW.col(j).data()));
@@ -90,6 +92,7 @@ PetscErrorCode ModeRefiner::refine(double t, Vec q, Vec lambda, double target, i
     // else goes to the full solve, which filters and reports.
     if (!theta.allFinite() || theta[0] < -1e-8 * std::abs(theta[m - 1])) break;
     V.noalias() = W * Y;
+    BV.noalias() = BW * Y; // B V for the next iteration without products with B
     // r = A x - theta B x = sum_j Y_jk (A w_j - theta B w_j) for the wanted pairs.
     R.noalias() = AW * Y.leftCols(count);
     PetscCall(blocks_.columnNorms(R, &an));
