@@ -162,6 +162,10 @@ struct Subspace {
 struct RitzPair {
   std::complex<double> lambda;
   Eigen::VectorXcd y;
+  // Its Ritz vector met the tolerance in the full space at an earlier
+  // projection: kept as it is (y padded with zeros gives the same x = V y,
+  // the first columns of V do not change), no functional iteration.
+  bool converged = false;
 };
 
 // The root of y^T (l^2 M + l D + K) y = 0 nearest `near`: the Rayleigh
@@ -244,7 +248,9 @@ bool projectedModes(const Eigen::MatrixXd &K, const Eigen::MatrixXd &D, const Ei
     for (RitzPair &pair : *pairs) pair.y.conservativeResizeLike(Eigen::VectorXcd::Zero(p)); // V grew
   }
   for (RitzPair &pair : *pairs)
-    if (!functionalIteration(K, D, M, &pair) || !(pair.lambda.imag() > 1e-10 * std::abs(pair.lambda))) return false;
+    if (!(pair.converged || functionalIteration(K, D, M, &pair)) ||
+        !(pair.lambda.imag() > 1e-10 * std::abs(pair.lambda)))
+      return false;
   std::sort(pairs->begin(), pairs->end(),
             [](const RitzPair &a, const RitzPair &b) { return std::abs(a.lambda) < std::abs(b.lambda); });
   for (int k = 1; k < count; ++k)
@@ -356,6 +362,7 @@ PetscErrorCode DampedModeRefiner::refine(double t, Vec q, Vec lambda, Mat K, Mat
       const double rel = kn > 0 ? std::hypot(rnr[k], rni[k]) / kn : 1.0;
       worst = std::max(worst, rel);
       residual[k] = rel;
+      pairs[k].converged = rel <= tolerance;
       if (rel > tolerance) {
         for (const auto &r : {Rr.col(k), Ri.col(k)}) {
           PetscCall(blocks_.solve(solver, r.data(), u.data(), &ok));
