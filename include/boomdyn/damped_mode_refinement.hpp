@@ -15,6 +15,7 @@
 #pragma once
 
 #include "boomdyn/damped_eigen_solver.hpp"
+#include "boomdyn/local_block.hpp"
 #include "boomdyn/petsc_handle.hpp"
 
 #include <vector>
@@ -55,6 +56,7 @@ private:
   Assembler &assembler_;
   PetscHandle<Mat> D_;
   int pattern_ = -1;
+  LocalBlocks blocks_; // the vectors of the refinement as dense local blocks (local_block.hpp)
 };
 
 } // namespace boomdyn

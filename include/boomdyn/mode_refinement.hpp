@@ -11,6 +11,7 @@
 #pragma once
 
 #include "boomdyn/eigen_solver.hpp"
+#include "boomdyn/local_block.hpp"
 #include "boomdyn/petsc_handle.hpp"
 
 #include <vector>
@@ -58,6 +59,7 @@ private:
   PetscHandle<KSP> ksp_;
   int pattern_ = -1;
   bool factored_ = false;
+  LocalBlocks blocks_; // the vectors of the refinement as dense local blocks (local_block.hpp)
 };
 
 } // namespace boomdyn

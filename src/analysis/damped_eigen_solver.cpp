@@ -135,7 +135,7 @@ PetscErrorCode quadraticRayleighQuotient(Mat ops[3], Vec xr, Vec xi, std::comple
 PetscErrorCode appendDampedMode(Assembler &assembler, std::complex<double> lambda, Vec xr, Vec xi, double residual,
                                 bool keepVector, DampedModalResult *result)
 {
-  PetscMPIInt rank;
+  PetscMPIInt rank, size;
   std::vector<double> real, imag;
   PetscFunctionBeginUser;
   const double modulus = std::abs(lambda);
@@ -155,8 +155,23 @@ PetscErrorCode appendDampedMode(Assembler &assembler, std::complex<double> lambd
     result->imag.push_back(std::move(i));
   }
   PetscCallMPI(MPI_Comm_rank(assembler.comm(), &rank));
-  PetscCall(gatherToZero(xr, real));
-  PetscCall(gatherToZero(xi, imag));
+  PetscCallMPI(MPI_Comm_size(assembler.comm(), &size));
+  if (size == 1) {
+    // All of x is local: no scatter (creating one per vector cost as much as
+    // the rest of a refined damped analysis).
+    const PetscScalar *a;
+    PetscInt n;
+    PetscCall(VecGetLocalSize(xr, &n));
+    PetscCall(VecGetArrayRead(xr, &a));
+    real.assign(a, a + n);
+    PetscCall(VecRestoreArrayRead(xr, &a));
+    PetscCall(VecGetArrayRead(xi, &a));
+    imag.assign(a, a + n);
+    PetscCall(VecRestoreArrayRead(xi, &a));
+  } else {
+    PetscCall(gatherToZero(xr, real));
+    PetscCall(gatherToZero(xi, imag));
+  }
   if (rank == 0) {
     // The phase is free: rotate the vector so that its largest entry is
     // real, then keep the real part (independent of the rank count and of

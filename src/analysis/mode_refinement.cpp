@@ -50,8 +50,6 @@ PetscErrorCode ModeRefiner::refine(double t, Vec q, Vec lambda, double target, i
                                    std::vector<PetscHandle<Vec>> &basis, RefinedModes *out, bool *converged)
 {
   const int m = static_cast<int>(basis.size());
-  std::vector<PetscHandle<Vec>> W(m), AW(m), BW(m);
-  PetscHandle<Vec> rhs, r;
   bool factored;
   PetscFunctionBeginUser;
   *converged = false;
@@ -63,37 +61,27 @@ PetscErrorCode ModeRefiner::refine(double t, Vec q, Vec lambda, double target, i
     PetscCall(PetscLogEventEnd(logEvents().eigen, 0, 0, 0, 0));
     PetscFunctionReturn(0);
   }
-  PetscCall(VecDuplicate(basis[0], rhs.address()));
-  PetscCall(VecDuplicate(basis[0], r.address()));
+  // The vectors as dense local blocks (local_block.hpp): one column each.
+  if (!blocks_.ready()) PetscCall(blocks_.setUp(basis[0]));
+  const PetscInt n = blocks_.localSize();
+  Eigen::MatrixXd V(n, m), BV(n, m), W(n, m), AW(n, m), BW(n, m), R(n, count);
   for (int j = 0; j < m; ++j) {
-    PetscCall(VecDuplicate(basis[0], W[j].address()));
-    PetscCall(VecDuplicate(basis[0], AW[j].address()));
-    PetscCall(VecDuplicate(basis[0], BW[j].address()));
+    PetscCall(blocks_.fromVec(basis[j], V.col(j).data()));
+    PetscCall(blocks_.multiply(B_, V.col(j).data(), BV.col(j).data()));
   }
-  std::vector<Vec> w(m), aw(m), bw(m);
-  for (int j = 0; j < m; ++j) w[j] = W[j], aw[j] = AW[j], bw[j] = BW[j];
-  std::vector<PetscScalar> dots(m), coef(m);
-  Eigen::MatrixXd GA(m, m), GB(m, m);
+  Eigen::MatrixXd GA, GB;
+  Eigen::VectorXd an, rn;
+  bool solved = true;
   for (int it = 1; it <= maxIterations; ++it) {
-    for (int j = 0; j < m; ++j) {
-      KSPConvergedReason kr;
-      PetscCall(MatMult(B_, basis[j], rhs));
-      PetscCall(KSPSolve(ksp_, rhs, W[j]));
-      PetscCall(KSPGetConvergedReason(ksp_, &kr));
-      if (kr < 0) {
-        PetscCall(PetscLogEventEnd(logEvents().eigen, 0, 0, 0, 0));
-        PetscFunctionReturn(0);
-      }
-      PetscCall(MatMult(A_, W[j], AW[j]));
-      PetscCall(MatMult(B_, W[j], BW[j]));
+    for (int j = 0; j < m && solved; ++j) {
+      PetscCall(blocks_.solve(ksp_, BV.col(j).data(), W.col(j).data(), &solved));
+      PetscCall(blocks_.multiply(A_, W.col(j).data(), AW.col(j).data()));
+      PetscCall(blocks_.multiply(B_, W.col(j).data(), BW.col(j).data()));
     }
+    if (!solved) break;
     // Projected pencil (W^T A W, W^T B W), symmetrized against round-off.
-    for (int j = 0; j < m; ++j) {
-      PetscCall(VecMDot(AW[j], m, w.data(), dots.data()));
-      for (int i = 0; i < m; ++i) GA(i, j) = dots[i];
-      PetscCall(VecMDot(BW[j], m, w.data(), dots.data()));
-      for (int i = 0; i < m; ++i) GB(i, j) = dots[i];
-    }
+    PetscCall(blocks_.inner(W, AW, &GA));
+    PetscCall(blocks_.inner(W, BW, &GB));
     GA = 0.5 * (GA + GA.transpose()).eval();
     GB = 0.5 * (GB + GB.transpose()).eval();
     Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> rr(GA, GB);
@@ -103,23 +91,15 @@ PetscErrorCode ModeRefiner::refine(double t, Vec q, Vec lambda, double target, i
     // The modes must be finite and non-negative (docs/model.md §5): anything
     // else goes to the full solve, which filters and reports.
     if (!theta.allFinite() || theta[0] < -1e-8 * std::abs(theta[m - 1])) break;
+    V.noalias() = W * Y;
+    BV.noalias() = BW * Y; // B V for the next iteration without products with B
+    // r = A x - theta B x = sum_j Y_jk (A w_j - theta B w_j) for the wanted pairs.
+    R.noalias() = AW * Y.leftCols(count);
+    PetscCall(blocks_.columnNorms(R, &an));
+    R.noalias() -= BW * (Y.leftCols(count) * theta.head(count).asDiagonal());
+    PetscCall(blocks_.columnNorms(R, &rn));
     double worst = 0;
-    for (int k = 0; k < m; ++k) {
-      for (int j = 0; j < m; ++j) coef[j] = Y(j, k);
-      PetscCall(VecSet(basis[k], 0.0));
-      PetscCall(VecMAXPY(basis[k], m, coef.data(), w.data()));
-      if (k >= count) continue;
-      // r = A x - theta B x = sum_j Y_jk (A w_j - theta B w_j)
-      PetscReal rn, an;
-      PetscCall(VecSet(rhs, 0.0));
-      PetscCall(VecMAXPY(rhs, m, coef.data(), aw.data()));
-      PetscCall(VecNorm(rhs, NORM_2, &an));
-      for (int j = 0; j < m; ++j) coef[j] = -theta[k] * Y(j, k);
-      PetscCall(VecCopy(rhs, r));
-      PetscCall(VecMAXPY(r, m, coef.data(), bw.data()));
-      PetscCall(VecNorm(r, NORM_2, &rn));
-      worst = std::max(worst, an > 0 ? rn / an : 1.0);
-    }
+    for (int k = 0; k < count; ++k) worst = std::max(worst, an[k] > 0 ? rn[k] / an[k] : 1.0);
     const double before = out->worstResidual;
     out->iterations = it;
     out->worstResidual = worst;
@@ -139,6 +119,7 @@ PetscErrorCode ModeRefiner::refine(double t, Vec q, Vec lambda, double target, i
       break;
     }
   }
+  for (int j = 0; j < m; ++j) PetscCall(blocks_.toVec(V.col(j).data(), basis[j]));
   PetscCall(PetscLogEventEnd(logEvents().eigen, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }

@@ -1,0 +1,48 @@
+// Dense blocks of distributed vectors for the tracking refinements (issue 18,
+// item 2; docs/performance.md "Tracking in dense local blocks"). At the paper
+// scene's 221 unknowns a PETSc call on one Vec (VecMDot, VecMAXPY,
+// VecDuplicate, ...) costs about as much as its arithmetic, and a refinement
+// made several hundred of them. Here a set of vectors of one layout is the
+// local rows of an Eigen column-major matrix (one column per vector): inner
+// products of whole blocks are one local product and, on more than one rank,
+// one MPI_Allreduce; combinations are local products; products with a PETSc
+// matrix and solves with a KSP go through two work Vecs that borrow a
+// column's memory (VecPlaceArray). Works on any rank count.
+#pragma once
+
+#include "boomdyn/petsc_handle.hpp"
+
+#include <Eigen/Dense>
+#include <petscksp.h>
+
+namespace boomdyn {
+
+class LocalBlocks {
+public:
+  // The layout (and communicator) of the vectors: that of `layout`.
+  PetscErrorCode setUp(Vec layout);
+  bool ready() const { return x_.get() != nullptr; }
+  PetscInt localSize() const { return n_; }
+  PetscInt firstRow() const { return lo_; } // global index of local row 0
+
+  // G = A^T B summed over the ranks (A, B: local rows, same row count).
+  PetscErrorCode inner(const Eigen::Ref<const Eigen::MatrixXd> &A, const Eigen::Ref<const Eigen::MatrixXd> &B,
+                       Eigen::MatrixXd *G) const;
+  // Euclidean norms of the columns of A over all ranks.
+  PetscErrorCode columnNorms(const Eigen::Ref<const Eigen::MatrixXd> &A, Eigen::VectorXd *norms) const;
+  // y = M x for one column (local rows of x and y).
+  PetscErrorCode multiply(Mat M, const double *x, double *y);
+  // x = solve(b) with the KSP (a factorization); *ok false when it failed.
+  PetscErrorCode solve(KSP ksp, const double *b, double *x, bool *ok);
+  // Copies between a column and a Vec of the layout.
+  PetscErrorCode toVec(const double *x, Vec v) const;
+  PetscErrorCode fromVec(Vec v, double *x) const;
+
+private:
+  MPI_Comm comm_ = MPI_COMM_NULL;
+  PetscMPIInt size_ = 1;
+  PetscInt n_ = 0, lo_ = 0;
+  PetscHandle<Vec> x_, y_; // work vectors without arrays of their own while in use
+};
+
+} // namespace boomdyn
