@@ -27,6 +27,16 @@ void BeamElementItem::evaluate(const AssemblyContext &ctx, const ItemValues &in,
   const ancf::Section &sec = beam_->section();
   const double l = beam_->elementLength();
   ancf::Vec8 f;
+  if (!J && sec.damped()) {
+    // A residual of a damped element: both forces in one pass over the Gauss
+    // points, bit-identical to internalForce + addDamping below.
+    const Eigen::Map<const ancf::Vec8> v(in.v);
+    ancf::Vec8 fd;
+    ancf::internalAndDampingForce(sec, l, q, v, f, fd);
+    r = (*mass_) * a + f - ctx.loadFactor * gravity_;
+    r += fd;
+    return;
+  }
   if (J && ctx.kin.cQ != 0.0) {
     ancf::Mat8 K;
     ancf::internalForce(sec, l, q, f, &K);
