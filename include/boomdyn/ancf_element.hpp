@@ -66,6 +66,11 @@ void internalForce(const Section &sec, double l, const Vec8 &e, Vec8 &f, Mat8 *K
 // positive semi-definite). fd may alias e or edot.
 double dampingForce(const Section &sec, double l, const Vec8 &e, const Vec8 &edot, Vec8 &fd, Mat8 *Kq, Mat8 *Dv);
 
+// internalForce(sec, l, e, f, nullptr) and dampingForce(sec, l, e, edot, fd,
+// nullptr, nullptr) in one pass (shared shape functions and strains), with
+// bit-identical results: the residual of a damped element.
+void internalAndDampingForce(const Section &sec, double l, const Vec8 &e, const Vec8 &edot, Vec8 &f, Vec8 &fd);
+
 // Axial strain and material curvature at xi (for output and tests).
 double axialStrain(const Vec8 &e, double xi, double l);
 double curvature(const Vec8 &e, double xi, double l);

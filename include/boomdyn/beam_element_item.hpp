@@ -26,6 +26,17 @@ private:
   // Kelvin-Voigt damping force into the residual, D (times cV) and dfd/dq (times cQ) into J.
   void addDamping(const AssemblyContext &ctx, const ItemValues &in, double *residual, double *J) const;
 
+  // Damping force and dissipated power at (q, v), kept for the last state:
+  // after every step the energy diagnostics (energy()) and the energy check
+  // (dampingForce()) ask for the same state.
+  double dampingAt(const ItemValues &in, ancf::Vec8 &fd) const;
+  struct DampingMemo {
+    bool valid = false;
+    ancf::Vec8 q, v, fd;
+    double power = 0;
+  };
+  mutable DampingMemo dampingMemo_;
+
   const AncfBeam *beam_;
   int element_;
   std::shared_ptr<const ancf::Mat8> mass_;

@@ -41,6 +41,9 @@ public:
   // point (positive on the left of the track's direction), its gradient d_q
   // and Hessian d_qq over coordinates() (row n of evaluate() with w = (0, 1)).
   void normalGap(const double *q, double &d, Eigen::VectorXd &dq, Eigen::MatrixXd &dqq) const;
+  // The same d and d_q without the Hessian (residuals, outputs, energies:
+  // the Hessian's curvature terms are most of the cost).
+  void normalGap(const double *q, double &d, Eigen::VectorXd &dq) const;
 
   PetscInt slackIndex() const { return slack_; }
   const Body &track() const { return *track_; }

@@ -59,6 +59,35 @@ const QuadRule &quadRule(AxialIntegration axial)
   return axial == AxialIntegration::Reduced ? reduced : full;
 }
 
+// s' and s'' of the shape functions at a rule's points for an element
+// length: the same values shapeValues() gives there, computed once per beam
+// instead of at every evaluation. A few lengths are kept (the beams of a
+// model are assembled one after the other; another length replaces the
+// oldest entry).
+struct ShapeTable {
+  const QuadRule *rule = nullptr;
+  double l = 0;
+  Eigen::Vector4d s1[kGaussPoints + kReducedAxialPoints], s2[kGaussPoints + kReducedAxialPoints];
+};
+
+const ShapeTable &shapeTable(const QuadRule &g, double l)
+{
+  constexpr int kKept = 4;
+  thread_local ShapeTable kept[kKept];
+  thread_local int next = 0;
+  for (const ShapeTable &t : kept)
+    if (t.rule == &g && t.l == l) return t;
+  ShapeTable &t = kept[next];
+  next = (next + 1) % kKept;
+  t.rule = &g;
+  t.l = l;
+  for (int p = 0; p < g.size; ++p) {
+    t.s1[p] = shapeValues(g.points[p].xi, l, 1);
+    t.s2[p] = shapeValues(g.points[p].xi, l, 2);
+  }
+  return t;
+}
+
 // Scalar cross product a x b = a_x b_y - a_y b_x.
 inline double cross(const Vec2 &a, const Vec2 &b) { return a.x() * b.y() - a.y() * b.x(); }
 
@@ -264,6 +293,7 @@ double strainEnergy(const Section &sec, double l, const Vec8 &e)
 void internalForce(const Section &sec, double l, const Vec8 &e, Vec8 &f, Mat8 *Kt)
 {
   const QuadRule &g = quadRule(sec.axialIntegration);
+  const ShapeTable &shapes = shapeTable(g, l);
   const AxialProjection proj = projectAxialStrain(sec, l, e, nullptr);
   const double EAproj = (1.0 - proj.gamma) * sec.EA; // EA of the projected strain (0 unless Assumed)
   Vec8 fl = Vec8::Zero(); // local accumulator: f may alias e
@@ -281,7 +311,7 @@ void internalForce(const Section &sec, double l, const Vec8 &e, Vec8 &f, Mat8 *K
   for (int p = 0; p < g.size; ++p) {
     const QuadPoint &q = g.points[p];
     const double EA = q.axial * proj.gamma * sec.EA, EI = q.bending * sec.EI; // this point's terms
-    const Eigen::Vector4d s1 = shapeValues(q.xi, l, 1), s2 = shapeValues(q.xi, l, 2);
+    const Eigen::Vector4d &s1 = shapes.s1[p], &s2 = shapes.s2[p];
     Vec2 r1 = Vec2::Zero(), r2 = Vec2::Zero();
     for (int k = 0; k < 4; ++k) {
       r1 += s1[k] * e.segment<2>(2 * k);
@@ -318,6 +348,7 @@ double dampingForce(const Section &sec, double l, const Vec8 &e, const Vec8 &edo
 {
   // The axial strain rate on the points of the axial strain, so that D stays etaA K_axial.
   const QuadRule &g = quadRule(sec.axialIntegration);
+  const ShapeTable &shapes = shapeTable(g, l);
   const AxialProjection proj = projectAxialStrain(sec, l, e, &edot);
   const double cproj = (1.0 - proj.gamma) * sec.EA * sec.etaA * l; // projected strain rate (Assumed)
   Vec8 fl = Vec8::Zero(); // local accumulator: fd may alias e or edot
@@ -333,7 +364,7 @@ double dampingForce(const Section &sec, double l, const Vec8 &e, const Vec8 &edo
   if (Dv) Dv->setZero();
   for (int p = 0; p < g.size; ++p) {
     const QuadPoint &q = g.points[p];
-    const Eigen::Vector4d s1 = shapeValues(q.xi, l, 1), s2 = shapeValues(q.xi, l, 2);
+    const Eigen::Vector4d &s1 = shapes.s1[p], &s2 = shapes.s2[p];
     Vec2 r1 = Vec2::Zero(), r2 = Vec2::Zero(), r1d = Vec2::Zero(), r2d = Vec2::Zero();
     for (int k = 0; k < 4; ++k) {
       r1 += s1[k] * e.segment<2>(2 * k);
@@ -383,6 +414,51 @@ double dampingForce(const Section &sec, double l, const Vec8 &e, const Vec8 &edo
   fd = fl;
   if (Kq) addKronecker(P, Q, *Kq);
   return power;
+}
+
+void internalAndDampingForce(const Section &sec, double l, const Vec8 &e, const Vec8 &edot, Vec8 &f, Vec8 &fd)
+{
+  // internalForce(.., nullptr) and dampingForce(.., nullptr, nullptr) in one
+  // pass: the shape functions, r', r'' and the axial projection are shared.
+  // Each force is accumulated with the same operations in the same order as
+  // in those two functions, so the results are bit-identical to calling them.
+  const QuadRule &g = quadRule(sec.axialIntegration);
+  const ShapeTable &shapes = shapeTable(g, l);
+  const AxialProjection proj = projectAxialStrain(sec, l, e, &edot);
+  const double EAproj = (1.0 - proj.gamma) * sec.EA;
+  const double cproj = (1.0 - proj.gamma) * sec.EA * sec.etaA * l;
+  Vec8 fl = Vec8::Zero(), fdl = Vec8::Zero(); // local accumulators: f, fd may alias e or edot
+  for (int p = 0; p < g.size; ++p) {
+    const QuadPoint &q = g.points[p];
+    const Eigen::Vector4d &s1 = shapes.s1[p], &s2 = shapes.s2[p];
+    Vec2 r1 = Vec2::Zero(), r2 = Vec2::Zero(), r1d = Vec2::Zero(), r2d = Vec2::Zero();
+    for (int k = 0; k < 4; ++k) {
+      r1 += s1[k] * e.segment<2>(2 * k);
+      r2 += s2[k] * e.segment<2>(2 * k);
+      r1d += s1[k] * edot.segment<2>(2 * k);
+      r2d += s2[k] * edot.segment<2>(2 * k);
+    }
+    const double wx = q.w * l;
+    const double J2 = r1.squaredNorm(), iJ2 = 1.0 / J2;
+    const double K = cross(r1, r2) * iJ2;
+    // Internal force (internalForce).
+    const double EA = q.axial * proj.gamma * sec.EA, EI = q.bending * sec.EI;
+    const double eps = 0.5 * (J2 - 1.0);
+    const double N = EA * eps + (proj.n ? EAproj * proj.strain(q.xi) : 0.0);
+    const double a = N - 2.0 * EI * K * K * iJ2, b = EI * K * iJ2;
+    const Vec2 v1 = wx * (a * r1 + b * rotCW(r2)), v2 = (wx * b) * rotCW(r1);
+    for (int k = 0; k < 4; ++k) fl.segment<2>(2 * k) += s1[k] * v1 - s2[k] * v2;
+    // Damping force (dampingForce, force only).
+    const double ca = wx * proj.gamma * sec.EA * sec.etaA * q.axial, cb = wx * sec.EI * sec.etaB * q.bending;
+    const double epsdot = r1.dot(r1d);
+    const double Kdot = (cross(r1d, r2) + cross(r1, r2d) - 2.0 * K * epsdot) * iJ2;
+    const double bK = cb * Kdot * iJ2;
+    const Vec2 u1 = (ca * epsdot) * r1 + bK * (rotCW(r2) - (2.0 * K) * r1), u2 = bK * rotCW(r1);
+    for (int k = 0; k < 4; ++k) fdl.segment<2>(2 * k) += s1[k] * u1 - s2[k] * u2;
+  }
+  for (int j = 0; j < proj.n; ++j) fdl += (cproj * proj.alphaDot[j]) * proj.grad[j];
+  f = fl;
+  fd = fdl;
 }
 
 Vec8 straightElement(const Vec2 &p0, const Vec2 &dir, double l)

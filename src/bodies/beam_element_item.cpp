@@ -27,6 +27,16 @@ void BeamElementItem::evaluate(const AssemblyContext &ctx, const ItemValues &in,
   const ancf::Section &sec = beam_->section();
   const double l = beam_->elementLength();
   ancf::Vec8 f;
+  if (!J && sec.damped()) {
+    // A residual of a damped element: both forces in one pass over the Gauss
+    // points, bit-identical to internalForce + addDamping below.
+    const Eigen::Map<const ancf::Vec8> v(in.v);
+    ancf::Vec8 fd;
+    ancf::internalAndDampingForce(sec, l, q, v, f, fd);
+    r = (*mass_) * a + f - ctx.loadFactor * gravity_;
+    r += fd;
+    return;
+  }
   if (J && ctx.kin.cQ != 0.0) {
     ancf::Mat8 K;
     ancf::internalForce(sec, l, q, f, &K);
@@ -67,7 +77,7 @@ void BeamElementItem::energy(const AssemblyContext &ctx, const ItemValues &in, E
   e.strain += u;
   if (sec.damped()) {
     ancf::Vec8 fd;
-    e.dissipation += ancf::dampingForce(sec, l, q, v, fd, nullptr, nullptr);
+    e.dissipation += dampingAt(in, fd);
   }
   // Round-off of the curvature eps |q| / l^2 and of the axial strain eps |q| / l,
   // entering U = l (EA eps^2 + EI kappa^2) / 2 to first order through the
@@ -86,12 +96,23 @@ bool BeamElementItem::dampingForce(const ItemValues &in, double *f) const
 {
   const ancf::Section &sec = beam_->section();
   if (!sec.damped()) return false;
-  const Eigen::Map<const ancf::Vec8> q(in.q), v(in.v);
   ancf::Vec8 fd;
-  (void)ancf::dampingForce(sec, beam_->elementLength(), q, v, fd, nullptr, nullptr);
+  (void)dampingAt(in, fd);
   Eigen::Map<ancf::Vec8> out(f);
   out = fd;
   return true;
+}
+
+double BeamElementItem::dampingAt(const ItemValues &in, ancf::Vec8 &fd) const
+{
+  const Eigen::Map<const ancf::Vec8> q(in.q), v(in.v);
+  DampingMemo &m = dampingMemo_;
+  if (!(m.valid && m.q == q && m.v == v)) {
+    m.power = ancf::dampingForce(beam_->section(), beam_->elementLength(), q, v, m.fd, nullptr, nullptr);
+    m.q = q, m.v = v, m.valid = true;
+  }
+  fd = m.fd;
+  return m.power;
 }
 
 void BeamElementItem::scales(const ItemValues &in, double &massDiag, double &stiffDiag, int &count) const

@@ -80,6 +80,14 @@ void SlidingJoint::normalGap(const double *q, double &d, Eigen::VectorXd &dq, Ei
   dqq = -ev.H;
 }
 
+void SlidingJoint::normalGap(const double *q, double &d, Eigen::VectorXd &dq) const
+{
+  ConstraintEval ev;
+  evaluateRows(q, nullptr, nullptr, ev);
+  d = -ev.C[1];
+  dq = -ev.Cq.row(1).transpose();
+}
+
 void SlidingJoint::evaluateRows(const double *q, const double *v, const double *w, ConstraintEval &out) const
 {
   const int ni = trackLoc_.count, nj = sliderLoc_.count, n = ni + nj + 1, is = n - 1;

@@ -187,6 +187,20 @@ std::vector<double> padLocal(const SlidingJoint &joint, const PadWatch &w, const
   return out;
 }
 
+// The last pad state computed and what it was computed from.
+struct PadStateMemo {
+  bool valid = false;
+  std::vector<double> q, v;
+  CenterlineLocation track, slider;
+  PadState state;
+};
+
+bool sameLocation(const CenterlineLocation &a, const CenterlineLocation &b)
+{
+  return a.count == b.count && a.dofs == b.dofs && a.element == b.element && a.xi == b.xi && a.s == b.s &&
+         a.begin == b.begin && a.end == b.end;
+}
+
 // Per pad every step: contact force f (N, along the track normal, on the
 // slider), penetration (|d| - g: > 0 in contact, else minus the free play
 // left) and side (+1, -1 in contact, 0 free); lift-off / contact events
@@ -194,9 +208,19 @@ std::vector<double> padLocal(const SlidingJoint &joint, const PadWatch &w, const
 void addPadOutputs(std::shared_ptr<SlidingJoint> joint, const PadContact *pad, ModelBuilder &b)
 {
   const PadWatch w = padWatch(*joint);
-  auto state = [joint, pad, w](const double *q, const double *v) {
-    const std::vector<double> ql = padLocal(*joint, w, q), vl = padLocal(*joint, w, v);
-    return pad->state(ql.data(), vl.data());
+  // The three channels and the event source ask for the state of the same
+  // (q, v) every step: the gap's derivatives are computed once per state.
+  auto memo = std::make_shared<PadStateMemo>();
+  auto state = [joint, pad, w, memo](const double *q, const double *v) {
+    std::vector<double> ql = padLocal(*joint, w, q), vl = padLocal(*joint, w, v);
+    if (memo->valid && memo->q == ql && memo->v == vl && sameLocation(memo->track, joint->trackLocation()) &&
+        sameLocation(memo->slider, joint->sliderLocation()))
+      return memo->state;
+    memo->state = pad->state(ql.data(), vl.data());
+    memo->q = std::move(ql), memo->v = std::move(vl);
+    memo->track = joint->trackLocation(), memo->slider = joint->sliderLocation();
+    memo->valid = true;
+    return memo->state;
   };
   const std::string &name = joint->name();
   b.addOutputChannel(OutputChannel::ofState("pad", name, "force", "N", w.watched,

@@ -35,8 +35,9 @@ void ElasticRope::evaluate(const AssemblyContext &ctx, const ItemValues &in, dou
 {
   const int n = path_.numCoordinates();
   Eigen::RowVectorXd lq;
-  Eigen::MatrixXd lqq = Eigen::MatrixXd::Zero(n, n);
-  const double l = path_.evaluate(in.q, lq, 1.0, &lqq);
+  Eigen::MatrixXd lqq; // the path's Hessian: only for the tangent
+  if (J) lqq.setZero(n, n);
+  const double l = J ? path_.evaluate(in.q, lq, 1.0, &lqq) : path_.evaluate(in.q, lq);
   const Eigen::Map<const Eigen::VectorXd> v(in.v, n);
   const double L0 = restLength(ctx.t), k = EA_ / L0;
   const double rate = lq.dot(v), f = k * (l - L0) + c_ * (rate - payout_.rate(ctx.t));

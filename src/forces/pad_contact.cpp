@@ -13,8 +13,7 @@ PadState PadContact::state(const double *q, const double *v) const
 {
   double d;
   Eigen::VectorXd dq;
-  Eigen::MatrixXd dqq;
-  joint_->normalGap(q, d, dq, dqq);
+  joint_->normalGap(q, d, dq);
   PadState s;
   s.gap = d;
   s.side = sideOf(d, spec_.clearance);
@@ -52,8 +51,9 @@ void PadContact::evaluate(const AssemblyContext &ctx, const ItemValues &in, doub
   if (k.cQ == 0 && k.cV == 0 && !ctx.accelerationLevel) return;
   double d;
   Eigen::VectorXd dq;
-  Eigen::MatrixXd dqq;
-  joint_->normalGap(in.q, d, dq, dqq);
+  Eigen::MatrixXd dqq; // the Hessian: only for the tangent
+  if (J) joint_->normalGap(in.q, d, dq, dqq);
+  else joint_->normalGap(in.q, d, dq);
   const int side = sideOf(d, spec_.clearance);
   const Eigen::Index n = dq.size();
   if (side == 0) { // free within the clearance: no force, no stiffness ...
@@ -83,8 +83,7 @@ void PadContact::energy(const AssemblyContext &, const ItemValues &in, EnergyPar
 {
   double d;
   Eigen::VectorXd dq;
-  Eigen::MatrixXd dqq;
-  joint_->normalGap(in.q, d, dq, dqq);
+  joint_->normalGap(in.q, d, dq);
   const int side = sideOf(d, spec_.clearance);
   if (side == 0) return;
   const double penetration = std::abs(d) - spec_.clearance;

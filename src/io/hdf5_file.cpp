@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <stdexcept>
 #include <unordered_map>
+#include <unordered_set>
 #include <utility>
 
 namespace boomdyn {
@@ -120,6 +121,9 @@ struct Hdf5File::Impl {
   Handle linkCreate; // creates missing intermediate groups
   Handle stringType; // variable-length UTF-8
   std::unordered_map<std::string, Series> series;
+  // Paths known to be groups (nothing is ever deleted from the file): the
+  // lookups of a snapshot's datasets, /paraview/N/..., skip their parents.
+  mutable std::unordered_set<std::string> groups;
 
   [[noreturn]] void fail(const std::string &what) const
   {
@@ -151,6 +155,8 @@ struct Hdf5File::Impl {
     while (pos != std::string::npos) {
       pos = normalized.find('/', pos + 1);
       std::string prefix = normalized.substr(0, pos);
+      if (pos != std::string::npos && groups.count(prefix))
+        continue;
       htri_t found = H5Lexists(file.get(), prefix.c_str(), H5P_DEFAULT);
       if (found < 0)
         fail("cannot look up '" + prefix + "'");
@@ -164,9 +170,14 @@ struct Hdf5File::Impl {
 
   bool isGroup(const std::string &existing) const
   {
+    if (groups.count(existing))
+      return true;
     Handle object(checkId(H5Oopen(file.get(), existing.c_str(), H5P_DEFAULT), "cannot open '" + existing + "'"),
                   H5Oclose);
-    return H5Iget_type(object.get()) == H5I_GROUP;
+    const bool group = H5Iget_type(object.get()) == H5I_GROUP;
+    if (group)
+      groups.insert(existing);
+    return group;
   }
 
   // Before creating `normalized`: HDF5 would report a dataset along the
@@ -175,6 +186,8 @@ struct Hdf5File::Impl {
   {
     for (std::size_t pos = normalized.find('/', 1); pos != std::string::npos; pos = normalized.find('/', pos + 1)) {
       std::string prefix = normalized.substr(0, pos);
+      if (groups.count(prefix))
+        continue;
       htri_t found = H5Lexists(file.get(), prefix.c_str(), H5P_DEFAULT);
       if (found < 0)
         fail("cannot look up '" + prefix + "'");
