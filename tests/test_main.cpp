@@ -1,10 +1,14 @@
 // GoogleTest main for every test executable: PETSc is initialized once per
-// process so that tests may create Vec/Mat/SNES objects.
+// process so that tests may create Vec/Mat/SNES objects. Started like the
+// boomdyn program (SingletonStart) when run without mpiexec.
 #include <gtest/gtest.h>
 #include <petscsys.h>
 
+#include "boomdyn/singleton_start.hpp"
+
 int main(int argc, char **argv)
 {
+  const boomdyn::SingletonStart singleton; // as boomdyn: fast start, a private session directory
   ::testing::InitGoogleTest(&argc, argv);
   PetscCall(PetscInitialize(&argc, &argv, nullptr, nullptr));
   int rank = 0;

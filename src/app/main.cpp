@@ -12,6 +12,7 @@
 
 #include "boomdyn/newton_solver.hpp"
 #include "boomdyn/scene_reader.hpp"
+#include "boomdyn/singleton_start.hpp"
 
 #include <slepcsys.h>
 
@@ -162,28 +163,11 @@ PetscErrorCode runProgram(int argc, char **argv, boomdyn::AppOptions *opts, std:
   PetscFunctionReturn(0);
 }
 
-// Open MPI's start-up of a process run without mpiexec (a "singleton")
-// waits about 0.3 s for things a one-process run never uses: it launches a
-// supporting daemon (orted) for a possible MPI_Comm_spawn, and its default
-// point-to-point layer loads the PSM/PSM2 (Omni-Path) transports, whose
-// initialization calibrates a timer by sleeping ~0.1 s each, hardware or not
-// (docs/performance.md, "Start-up"). One process needs neither: unless the
-// user's environment says otherwise, a singleton runs without the daemon and
-// with the plain ob1 layer. Runs under mpiexec (which sets
-// OMPI_COMM_WORLD_SIZE or PMIX_RANK) are left alone, and other MPI
-// implementations ignore these variables.
-void lightSingletonStart()
-{
-  if (std::getenv("OMPI_COMM_WORLD_SIZE") || std::getenv("PMIX_RANK") || std::getenv("PMI_RANK")) return;
-  setenv("OMPI_MCA_ess_singleton_isolated", "1", 0); // 0: an existing setting wins
-  setenv("OMPI_MCA_pml", "ob1", 0);
-}
-
 } // namespace
 
 int main(int argc, char **argv)
 {
-  lightSingletonStart();
+  const boomdyn::SingletonStart singleton; // before MPI_Init, released after MPI_Finalize
   if (const std::string missing = boomdyn::unreadableOptionsFile(argc, argv); !missing.empty()) {
     std::printf("boomdyn: error: %s\n", missing.c_str());
     return 1;
