@@ -53,6 +53,10 @@ private:
     PetscInt offset;      // of the track's coordinates in padValues_; the slider's, then s follow
   };
   std::vector<PadFriction> padFrictions_;
+  // Per state output channel, where its watched coordinates start in
+  // channelValues_: channels with the same watched list (a pad's three
+  // channels watch both bodies whole) share one copy of it.
+  std::vector<std::size_t> channelOffsets_;
   struct Frame {
     const Body *body;
     double s;        // material point measured

@@ -143,8 +143,19 @@ PetscErrorCode SensorProbe::setUp(Vec layout)
   PetscCall(scatterToRankZero(layout, rank_, normalIdx, normalScatter_.address(), normalValues_.address()));
   // State output channels and event sources: their watched coordinates, one after the other.
   std::vector<PetscInt> channelIdx, eventIdx;
-  for (const OutputChannel &ch : model_.outputChannels())
-    if (ch.fromState()) channelIdx.insert(channelIdx.end(), ch.watched.begin(), ch.watched.end());
+  std::vector<std::pair<const std::vector<PetscInt> *, std::size_t>> lists; // distinct watched lists, offsets
+  channelOffsets_.clear();
+  for (const OutputChannel &ch : model_.outputChannels()) {
+    if (!ch.fromState()) continue;
+    auto same = std::find_if(lists.begin(), lists.end(), [&](const auto &l) { return *l.first == ch.watched; });
+    if (same != lists.end()) {
+      channelOffsets_.push_back(same->second);
+      continue;
+    }
+    lists.push_back({&ch.watched, channelIdx.size()});
+    channelOffsets_.push_back(channelIdx.size());
+    channelIdx.insert(channelIdx.end(), ch.watched.begin(), ch.watched.end());
+  }
   for (const EventSource &e : model_.eventSources()) eventIdx.insert(eventIdx.end(), e.watched.begin(), e.watched.end());
   PetscCall(scatterToRankZero(layout, rank_, channelIdx, channelScatter_.address(), channelValues_.address()));
   PetscCall(scatterToRankZero(layout, rank_, eventIdx, eventScatter_.address(), eventValues_.address()));
@@ -160,14 +171,14 @@ PetscErrorCode SensorProbe::readOutputs(double t, Vec q, Vec v, const std::vecto
   PetscCall(scatterValues(channelScatter_, v, channelValues_, vs));
   outputs.clear();
   if (rank_ != 0) PetscFunctionReturn(0);
-  std::size_t offset = 0;
+  std::size_t k = 0; // state channel
   for (const OutputChannel &ch : model_.outputChannels()) {
     if (!ch.fromState()) {
       outputs.push_back(ch.factor * multipliers.at(static_cast<std::size_t>(ch.index)));
       continue;
     }
+    const std::size_t offset = channelOffsets_[k++];
     outputs.push_back(ch.evaluate(t, qs.data() + offset, vs.data() + offset));
-    offset += ch.watched.size();
   }
   PetscFunctionReturn(0);
 }

@@ -11,6 +11,7 @@
 #include "boomdyn/model_builder.hpp"
 #include "boomdyn/physics_type.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <memory>
 
@@ -75,10 +76,27 @@ void buildElasticRope(const ComponentSpec &spec, ModelBuilder &b)
   }
   const ElasticRope *r = rope.get(); // owned by the Model, which also holds the channels and the source
   b.addItem(std::move(rope));
+  // The channels and the event source ask for the state at the same (t, q, v)
+  // every step: the rope's state is computed once per (t, q, v).
+  struct Memo {
+    bool valid = false;
+    double t = 0;
+    std::vector<double> q, v;
+    ElasticRope::State state;
+  };
+  auto memo = std::make_shared<Memo>();
+  auto stateAt = [r, memo, n = dofs.size()](double t, const double *q, const double *v) {
+    Memo &m = *memo;
+    if (!(m.valid && m.t == t && std::equal(q, q + n, m.q.begin()) && std::equal(v, v + n, m.v.begin()))) {
+      m.state = r->state(t, q, v);
+      m.t = t, m.q.assign(q, q + n), m.v.assign(v, v + n), m.valid = true;
+    }
+    return m.state;
+  };
   auto channel = [&](const char *quantity, const char *unit, double (*pick)(const ElasticRope::State &)) {
     b.addOutputChannel(OutputChannel::ofTimedState(
         "elastic_rope", spec.name, quantity, unit, dofs,
-        [r, pick](double t, const double *q, const double *v) { return pick(r->state(t, q, v)); }));
+        [stateAt, pick](double t, const double *q, const double *v) { return pick(stateAt(t, q, v)); }));
   };
   channel("tension", "N", [](const ElasticRope::State &s) { return s.tension; });
   channel("length", "m", [](const ElasticRope::State &s) { return s.length; });
@@ -94,9 +112,9 @@ void buildElasticRope(const ComponentSpec &spec, ModelBuilder &b)
   };
   auto last = std::make_shared<Last>();
   EventSource source{spec.name, {"taut", "slack"}, dofs, nullptr};
-  source.detect = [r, last, name = spec.name](double t, double h, const double *q, const double *v, bool first,
-                                             std::vector<TypeEvent> &events) {
-    const ElasticRope::State now = r->state(t, q, v), &before = last->state;
+  source.detect = [stateAt, last, name = spec.name](double t, double h, const double *q, const double *v, bool first,
+                                                   std::vector<TypeEvent> &events) {
+    const ElasticRope::State now = stateAt(t, q, v), &before = last->state;
     if (!first && now.taut != before.taut) {
       double when = t;
       if ((before.stretch > 0) != (now.stretch > 0)) // by length: the stretch crossed zero
