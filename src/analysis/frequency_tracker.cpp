@@ -201,7 +201,11 @@ PetscErrorCode FrequencyTracker::analyze(double t, Vec q, Vec lambda, TrackedMod
       for (int j = 0; j < follow_; ++j) PetscCall(modalAssurance(previous_[j], candidate, &mac[j][k]));
     }
     picks = assignByMac(mac, -1.0);
-    for (int j = 0; j < follow_; ++j) macs[j] = mac[j][picks[j]];
+    for (int j = 0; j < follow_; ++j) {
+      PetscCheck(picks[j] >= 0, assembler_.comm(), PETSC_ERR_PLIB,
+                 "frequency tracking at t = %g s: %d modes found for %d followed modes", t, (int)omega2.size(), follow_);
+      macs[j] = mac[j][picks[j]];
+    }
   }
   out->t = t;
   out->frequencyHz.clear();
