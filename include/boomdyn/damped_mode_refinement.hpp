@@ -5,8 +5,8 @@
 // nearly in their span. Instead of a fresh SLEPc PEP solve, the quadratic
 // problem T(lambda) x = (lambda^2 M + lambda D + K) x = 0 is projected onto a
 // small real subspace V (nonlinear Arnoldi with Galerkin projection):
-//     V = [undamped modes, P^{-1} D phi_k],   P = K - tau M (the symmetric
-//     refinement's factorization),
+//     V = [undamped modes, u_k = P^{-1} D phi_k, P^{-1} M u_k],   P = K - tau M
+//     (the symmetric refinement's factorization),
 //     (lambda^2 V^T M V + lambda V^T D V + V^T K V) y = 0   (dense, small),
 //     x = V y,  r = T(lambda) x,  V <- [V, P^{-1} Re r, P^{-1} Im r]
 // until every wanted pair has ||T(lambda) x|| <= tol ||K x||. K, M and the
