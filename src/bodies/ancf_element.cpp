@@ -105,6 +105,20 @@ inline Vec8 expand(const Eigen::Vector4d &s, const Vec2 &v)
 // Rotated vector W v with a x b = a^T W b, i.e. W v = (v_y, -v_x).
 inline Vec2 rotCW(const Vec2 &v) { return Vec2(v.y(), -v.x()); }
 
+// r', r'' at a point with shape derivatives s1, s2, and their rates (the
+// same sums from edot): what the damping force needs per Gauss point.
+inline void slopesAndRates(const Eigen::Vector4d &s1, const Eigen::Vector4d &s2, const Vec8 &e, const Vec8 &edot,
+                           Vec2 &r1, Vec2 &r2, Vec2 &r1d, Vec2 &r2d)
+{
+  r1 = r2 = r1d = r2d = Vec2::Zero();
+  for (int k = 0; k < 4; ++k) {
+    r1 += s1[k] * e.segment<2>(2 * k);
+    r2 += s2[k] * e.segment<2>(2 * k);
+    r1d += s1[k] * edot.segment<2>(2 * k);
+    r2d += s2[k] * edot.segment<2>(2 * k);
+  }
+}
+
 // Add (P ⊗ I) + (Q ⊗ W), W = [[0, 1], [-1, 0]], to an 8x8 matrix: the
 // Hessians of the axial strain and of r' x r'' are of these forms.
 void addKronecker(const Eigen::Matrix4d &P, const Eigen::Matrix4d &Q, Mat8 &M)
@@ -365,13 +379,8 @@ double dampingForce(const Section &sec, double l, const Vec8 &e, const Vec8 &edo
   for (int p = 0; p < g.size; ++p) {
     const QuadPoint &q = g.points[p];
     const Eigen::Vector4d &s1 = shapes.s1[p], &s2 = shapes.s2[p];
-    Vec2 r1 = Vec2::Zero(), r2 = Vec2::Zero(), r1d = Vec2::Zero(), r2d = Vec2::Zero();
-    for (int k = 0; k < 4; ++k) {
-      r1 += s1[k] * e.segment<2>(2 * k);
-      r2 += s2[k] * e.segment<2>(2 * k);
-      r1d += s1[k] * edot.segment<2>(2 * k);
-      r2d += s2[k] * edot.segment<2>(2 * k);
-    }
+    Vec2 r1, r2, r1d, r2d;
+    slopesAndRates(s1, s2, e, edot, r1, r2, r1d, r2d);
     const double wx = q.w * l;
     const double ca = wx * proj.gamma * sec.EA * sec.etaA * q.axial, cb = wx * sec.EI * sec.etaB * q.bending;
     const double iJ2 = 1.0 / r1.squaredNorm();
@@ -431,13 +440,8 @@ void internalAndDampingForce(const Section &sec, double l, const Vec8 &e, const 
   for (int p = 0; p < g.size; ++p) {
     const QuadPoint &q = g.points[p];
     const Eigen::Vector4d &s1 = shapes.s1[p], &s2 = shapes.s2[p];
-    Vec2 r1 = Vec2::Zero(), r2 = Vec2::Zero(), r1d = Vec2::Zero(), r2d = Vec2::Zero();
-    for (int k = 0; k < 4; ++k) {
-      r1 += s1[k] * e.segment<2>(2 * k);
-      r2 += s2[k] * e.segment<2>(2 * k);
-      r1d += s1[k] * edot.segment<2>(2 * k);
-      r2d += s2[k] * edot.segment<2>(2 * k);
-    }
+    Vec2 r1, r2, r1d, r2d;
+    slopesAndRates(s1, s2, e, edot, r1, r2, r1d, r2d);
     const double wx = q.w * l;
     const double J2 = r1.squaredNorm(), iJ2 = 1.0 / J2;
     const double K = cross(r1, r2) * iJ2;

@@ -146,6 +146,30 @@ private:
   std::unique_ptr<FrequencyTracker> tracker_;
 };
 
+// A dynamic run of `scene` with its sensor/output history and the tracker
+// every `interval` s (both kept for the test to read).
+struct TrackedRun {
+  TrackedRun(const Scene &scene, double interval) : sim(scene, PETSC_COMM_WORLD, testOptions(0))
+  {
+    check(sim.setUp());
+    sim.addMonitor(std::make_unique<HistoryRecorder>(sim, history));
+    auto monitor = std::make_unique<TrackerMonitor>(sim, interval);
+    tracker = monitor.get();
+    sim.addMonitor(std::move(monitor));
+    check(sim.run());
+  }
+  // The history row at the time of an analysis.
+  std::size_t stepAt(double t) const
+  {
+    std::size_t step = 0;
+    while (step < history.time.size() && history.time[step] < t - 1e-12) ++step;
+    return step;
+  }
+  DynamicHistory history;
+  Simulation sim;
+  TrackerMonitor *tracker = nullptr;
+};
+
 } // namespace
 
 TEST(PayloadModes, TwoLowestFrequenciesMatchTheTwoDegreeOfFreedomModel)
@@ -197,15 +221,10 @@ TEST(PayloadModes, TrackedPendulumMatchesTheZeroCrossingsOfTheSwing)
   const Scene scene = parseScene(withPayload("dynamic") + push + "dynamic: {t_end: " + std::to_string(tEnd) +
                                      ", dt: 2.0e-3, rho_inf: 0.8, initial: static}\n",
                                  "boom-payload.yaml");
-  DynamicHistory h;
-  Simulation sim(scene, PETSC_COMM_WORLD, testOptions(0));
-  check(sim.setUp());
-  sim.addMonitor(std::make_unique<HistoryRecorder>(sim, h));
-  auto tracking = std::make_unique<TrackerMonitor>(sim, 0.1);
-  TrackerMonitor *tracker = tracking.get();
-  sim.addMonitor(std::move(tracking));
-  check(sim.run());
-  ASSERT_TRUE(sim.summary().completed) << sim.summary().failure;
+  TrackedRun run(scene, 0.1);
+  ASSERT_TRUE(run.sim.summary().completed) << run.sim.summary().failure;
+  const DynamicHistory &h = run.history;
+  TrackerMonitor *tracker = run.tracker;
   // Zero crossings of the swing (payload x minus tip x).
   std::vector<double> crossings;
   for (std::size_t s = 1; s < h.time.size(); ++s) {
@@ -272,21 +291,15 @@ TEST(PayloadModes, PendulumAndBounceFollowedTogetherWhileHoisting)
   const Scene scene = parseScene(text + "dynamic: {t_end: 2.6, dt: 2.0e-3, rho_inf: 0.8, initial: static}\n"
                                         "tracking: {interval: 0.05, count: 4, follow: [0.5, 8.5]}\n",
                                  "boom-payload-hoisted.yaml");
-  DynamicHistory h;
-  Simulation sim(scene, PETSC_COMM_WORLD, testOptions(0));
-  check(sim.setUp());
-  sim.addMonitor(std::make_unique<HistoryRecorder>(sim, h));
-  auto tracking = std::make_unique<TrackerMonitor>(sim, 0.05);
-  TrackerMonitor *tracker = tracking.get();
-  sim.addMonitor(std::move(tracking));
-  check(sim.run());
-  ASSERT_TRUE(sim.summary().completed) << sim.summary().failure;
+  TrackedRun run(scene, 0.05);
+  ASSERT_TRUE(run.sim.summary().completed) << run.sim.summary().failure;
+  const DynamicHistory &h = run.history;
+  TrackerMonitor *tracker = run.tracker;
   ASSERT_GE(tracker->modes.size(), 40u);
   double worstPendulum = 0, worstBounce = 0, lowestMac = 1, lMin = 1e9, lMax = 0;
-  std::size_t step = 0;
   for (const TrackedModes &t : tracker->modes) {
     ASSERT_EQ(t.followed.size(), 2u);
-    while (step < h.time.size() && h.time[step] < t.t - 1e-12) ++step;
+    const std::size_t step = run.stepAt(t.t);
     ASSERT_LT(step, h.time.size());
     ASSERT_NEAR(h.time[step], t.t, 1e-12);
     const std::vector<double> &out = h.outputs[step]; // tension, length, stretch, payout, winch_power
@@ -351,20 +364,14 @@ output:
     - {name: b, body: b, at: 0.1}
 )",
                                  "two-pendulums.yaml");
-  DynamicHistory h;
-  Simulation sim(scene, PETSC_COMM_WORLD, testOptions(0));
-  check(sim.setUp());
-  sim.addMonitor(std::make_unique<HistoryRecorder>(sim, h));
-  auto tracking = std::make_unique<TrackerMonitor>(sim, 0.05);
-  TrackerMonitor *tracker = tracking.get();
-  sim.addMonitor(std::move(tracking));
-  check(sim.run());
-  ASSERT_TRUE(sim.summary().completed) << sim.summary().failure;
+  TrackedRun run(scene, 0.05);
+  ASSERT_TRUE(run.sim.summary().completed) << run.sim.summary().failure;
+  const DynamicHistory &h = run.history;
+  TrackerMonitor *tracker = run.tracker;
   double worst[2] = {0, 0}, lowestMac = 1;
-  std::size_t step = 0;
   for (const TrackedModes &t : tracker->modes) {
     ASSERT_EQ(t.followed.size(), 2u);
-    while (step < h.time.size() && h.time[step] < t.t - 1e-12) ++step;
+    const std::size_t step = run.stepAt(t.t);
     ASSERT_LT(step, h.time.size());
     // Outputs: rope_a tension, length, stretch, payout, winch_power; rope_b tension, length, stretch.
     const std::vector<double> &out = h.outputs[step];
