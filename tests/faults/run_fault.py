@@ -448,6 +448,43 @@ def case_unused_option():
           "-boom_allow_unused: -ts_dt on a static scene is a warning (exit %s)" % rc)
 
 
+def case_private_session_dir():
+    """A run without mpiexec keeps Open MPI's session directories in a private
+    $TMPDIR/boomdyn-mpi-XXXXXX (src/app/singleton_start.cpp), removed at the
+    end: the shared $TMPDIR/ompi.<host>.<uid>/jf.0 of isolated singletons made
+    runs started side by side fail in MPI_Init now and then."""
+    tmp = path("tmp")
+    os.makedirs(tmp)
+    e = dict(env, TMPDIR=tmp)
+    e.pop("OMPI_MCA_orte_tmpdir_base", None)
+    p = subprocess.Popen([boomdyn, scene, "-o", path("r.h5"), "-boom_overwrite", "-boom_quiet", "-ts_max_time", "8"],
+                         stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, env=e)
+    def session_made():  # a folder in $TMPDIR with something in it (Open MPI's tree)
+        names = os.listdir(tmp)
+        return any(os.path.isdir(os.path.join(tmp, n)) and os.listdir(os.path.join(tmp, n)) for n in names)
+    for _ in range(400):
+        try:
+            if session_made() or p.poll() is not None:
+                break
+        except FileNotFoundError:  # a folder removed while looked at
+            pass
+        time.sleep(0.01)
+    seen = []
+    if p.poll() is None:
+        p.send_signal(signal.SIGSTOP)  # hold it there while we look
+        seen = sorted(os.listdir(tmp))
+        inside = sorted(os.listdir(os.path.join(tmp, seen[0]))) if len(seen) == 1 else []
+        p.send_signal(signal.SIGCONT)
+    else:
+        inside = []
+    text, _ = p.communicate(timeout=120)
+    check(p.returncode == 0, "the run completes (exit %s): %s" % (p.returncode, last_line(text)[:120]))
+    check(len(seen) == 1 and seen[0].startswith("boomdyn-mpi-"),
+          "while it runs, $TMPDIR holds only its private base: %s" % seen)
+    check(any(n.startswith("ompi.") for n in inside), "with Open MPI's session tree inside it: %s" % inside)
+    check(os.listdir(tmp) == [], "and nothing is left after the run: %s" % os.listdir(tmp))
+
+
 CASES = {name[len("case_"):]: f for name, f in globals().items() if name.startswith("case_")}
 
 if case not in CASES:
