@@ -25,7 +25,7 @@ struct DampedModalResult {
   // Real parts of the coordinate parts of the eigenvectors, gathered on rank 0
   // (empty elsewhere), max-norm 1 (as ModalResult::shapes).
   std::vector<std::vector<double>> shapes;
-  // With DampedModalOptions::keepVectors (always from refinement): the
+  // With DampedModalOptions::keepVectors (DampedModeRefiner::keepVectors from refinement): the
   // eigenvectors x = real + i imag (layout of the pencil's x, all ranks),
   // of the eigenvalue with Im lambda > 0.
   std::vector<PetscHandle<Vec>> real, imag;

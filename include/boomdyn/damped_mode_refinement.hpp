@@ -50,6 +50,9 @@ public:
   // from the iteration's by about the floor.
   double tolerance = 5e-9;
   int maxIterations = 6;
+  // Fill DampedModalResult::real, imag (tracking without a consumer of the
+  // vectors skips their copies).
+  bool keepVectors = true;
   int maxSubspace = 48;
 
 private:

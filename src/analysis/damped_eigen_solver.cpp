@@ -177,9 +177,14 @@ PetscErrorCode appendDampedMode(Assembler &assembler, std::complex<double> lambd
     // real, then keep the real part (independent of the rank count and of
     // the complex scale of the vector).
     const std::size_t nq = (std::size_t)assembler.model().numCoordinates();
+    // Largest by the squared modulus (hypot per entry cost about a tenth of
+    // a refined damped analysis on the paper scene).
     std::size_t big = 0;
-    for (std::size_t i = 0; i < nq; ++i)
-      if (std::hypot(real[i], imag[i]) > std::hypot(real[big], imag[big])) big = i;
+    double largest = -1;
+    for (std::size_t i = 0; i < nq; ++i) {
+      const double modulus2 = real[i] * real[i] + imag[i] * imag[i];
+      if (modulus2 > largest) largest = modulus2, big = i;
+    }
     const double phase = std::atan2(imag[big], real[big]);
     std::vector<double> shape(nq);
     for (std::size_t i = 0; i < nq; ++i) shape[i] = real[i] * std::cos(phase) + imag[i] * std::sin(phase);

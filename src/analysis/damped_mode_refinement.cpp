@@ -467,7 +467,7 @@ PetscErrorCode DampedModeRefiner::refine(double t, Vec q, Vec lambda, Mat K, Mat
     for (int k = 0; k < count; ++k) {
       PetscCall(blocks_.toVec(bestXr.col(k).data(), xr));
       PetscCall(blocks_.toVec(bestXi.col(k).data(), xi));
-      PetscCall(appendDampedMode(assembler_, bestLambda[k], xr, xi, bestResidual[k], true, result));
+      PetscCall(appendDampedMode(assembler_, bestLambda[k], xr, xi, bestResidual[k], keepVectors, result));
     }
     *converged = true;
   }

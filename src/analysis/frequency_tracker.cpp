@@ -244,6 +244,7 @@ PetscErrorCode FrequencyTracker::analyzeDamped(double t, Vec q, Vec lambda, Trac
     if (!factored) PetscCall(refiner_.prepare(t, q, lambda, target_, &factored));
     pencilCurrent_ = factored;
     DampedRefinementInfo info;
+    dampedRefiner_.keepVectors = modes != nullptr;
     if (factored)
       PetscCall(dampedRefiner_.refine(t, q, lambda, refiner_.stiffness(), refiner_.mass(), refiner_.shiftedSolver(),
                                       basis_, found_, &dm, &info, &refined));
