@@ -5,7 +5,7 @@ For each case (a scene and options) the two binaries run one after the other,
 `--repeat` times, so that a change of the machine's load hits both alike. Per
 run: wall time, user+sys CPU time of the process (getrusage of the child) and,
 from -log_view, the time in the time steps (BoomStep), the eigen-analyses
-(BoomEigen), the factorizations (PCSetUp) and the residual evaluations
+(BoomEigen), the state snapshots (BoomOutput), the factorizations (PCSetUp) and the residual evaluations
 (SNESFunctionEval). The table gives the median and the range of each.
 
   /usr/bin/python3 benchmarks/compare_binaries.py --old /work/main/build/boomdyn --new build/boomdyn \\
@@ -31,7 +31,7 @@ import tempfile
 import time
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-EVENTS = ["BoomStep", "BoomEigen", "PCSetUp", "SNESFunctionEval"]
+EVENTS = ["BoomStep", "BoomEigen", "BoomOutput", "PCSetUp", "SNESFunctionEval"]
 
 
 def log_times(path):
@@ -102,8 +102,8 @@ def main():
     p.add_argument("--out", help="append the markdown table to this file")
     a = p.parse_args()
     env_load = os.getloadavg()
-    rows = ["| case | binary | wall [s] | user+sys [s] | time steps [s] | eigen [s] | factorizations | residuals | new/old wall |",
-            "|---|---|---:|---:|---:|---:|---:|---:|---:|"]
+    rows = ["| case | binary | wall [s] | user+sys [s] | time steps [s] | eigen [s] | output [s] | factorizations | residuals | new/old wall |",
+            "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|"]
     with tempfile.TemporaryDirectory() as tmp:
         for label, args, _ in cases(a.cases, a.elements):
             res = {"old": [], "new": []}
@@ -115,10 +115,11 @@ def main():
                 rs = res[which]
                 ev = rs[-1][2]
                 ratio = statistics.median(r[0] for r in rs) / med_old
-                rows.append("| %s | %s | %s | %s | %s | %s | %d | %d | %s |" % (
+                rows.append("| %s | %s | %s | %s | %s | %s | %s | %d | %d | %s |" % (
                     label, which, fmt([r[0] for r in rs]), fmt([r[1] for r in rs]),
                     fmt([r[2].get("BoomStep", (0, 0))[1] for r in rs]),
-                    fmt([r[2].get("BoomEigen", (0, 0))[1] for r in rs]), ev.get("PCSetUp", (0, 0))[0],
+                    fmt([r[2].get("BoomEigen", (0, 0))[1] for r in rs]),
+                    fmt([r[2].get("BoomOutput", (0, 0))[1] for r in rs]), ev.get("PCSetUp", (0, 0))[0],
                     ev.get("SNESFunctionEval", (0, 0))[0], "%.2f" % ratio if which == "new" else ""))
                 print(rows[-1], flush=True)
     text = "\n".join(rows) + "\n\nLoad average at the start: %.1f %.1f %.1f (2 cores).\n" % env_load
