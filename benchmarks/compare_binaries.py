@@ -5,11 +5,12 @@ For each case (a scene and options) the two binaries run one after the other,
 `--repeat` times, so that a change of the machine's load hits both alike. Per
 run: wall time, user+sys CPU time of the process (getrusage of the child) and,
 from -log_view, the time in the time steps (BoomStep), the eigen-analyses
-(BoomEigen), the factorizations (PCSetUp) and the residual evaluations
+(BoomEigen), the state snapshots (BoomOutput), the factorizations (PCSetUp) and the residual evaluations
 (SNESFunctionEval). The table gives the median and the range of each.
 
   /usr/bin/python3 benchmarks/compare_binaries.py --old /work/main/build/boomdyn --new build/boomdyn \\
-      [--repeat 3] [--cases paper paper_notrack cantilever startup] [--elements 8 32 128 512 2048] [--out FILE.md]
+      [--repeat 3] [--cases paper paper_notrack cantilever startup] [--elements 8 32 128 512 2048]
+      [--cantilever-variants defaults reuse full] [--out FILE.md]
 
 Cases: `paper` (inputs/paper_extraction.yaml with its tracking every 10 ms),
 `paper_notrack` (the same, -boom_tracking_interval 0), `pads` and
@@ -31,7 +32,7 @@ import tempfile
 import time
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-EVENTS = ["BoomStep", "BoomEigen", "PCSetUp", "SNESFunctionEval"]
+EVENTS = ["BoomStep", "BoomEigen", "BoomOutput", "PCSetUp", "SNESFunctionEval"]
 
 
 def log_times(path):
@@ -60,7 +61,7 @@ def run_once(binary, args, tmp):
     return wall, cpu, log_times(log)
 
 
-def cases(names, elements):
+def cases(names, elements, variants=("defaults", "reuse", "full")):
     paper = os.path.join(ROOT, "inputs", "paper_extraction.yaml")
     cantilever = os.path.join(ROOT, "inputs", "cantilever_dynamic.yaml")
     out = []
@@ -81,9 +82,12 @@ def cases(names, elements):
     if "cantilever" in names:
         for n in elements:
             base = [cantilever, "-boom_elements", str(n), "-boom_state_interval", "0"]
-            out.append(("cantilever %d el., defaults" % n, base, []))
-            out.append(("cantilever %d el., both with reuse" % n, base + ["-boom_jacobian_reuse", "1"], []))
-            out.append(("cantilever %d el., both full Newton" % n, base + ["-boom_jacobian_reuse", "0"], []))
+            if "defaults" in variants:
+                out.append(("cantilever %d el., defaults" % n, base, []))
+            if "reuse" in variants:
+                out.append(("cantilever %d el., both with reuse" % n, base + ["-boom_jacobian_reuse", "1"], []))
+            if "full" in variants:
+                out.append(("cantilever %d el., both full Newton" % n, base + ["-boom_jacobian_reuse", "0"], []))
     return out
 
 
@@ -99,13 +103,15 @@ def main():
     p.add_argument("--repeat", type=int, default=3)
     p.add_argument("--cases", nargs="+", default=["startup", "paper", "paper_notrack", "cantilever"])
     p.add_argument("--elements", type=int, nargs="+", default=[8, 32, 128, 512, 2048])
+    p.add_argument("--cantilever-variants", nargs="+", default=["defaults", "reuse", "full"],
+                   choices=["defaults", "reuse", "full"], help="which option sets the cantilever case runs")
     p.add_argument("--out", help="append the markdown table to this file")
     a = p.parse_args()
     env_load = os.getloadavg()
-    rows = ["| case | binary | wall [s] | user+sys [s] | time steps [s] | eigen [s] | factorizations | residuals | new/old wall |",
-            "|---|---|---:|---:|---:|---:|---:|---:|---:|"]
+    rows = ["| case | binary | wall [s] | user+sys [s] | time steps [s] | eigen [s] | output [s] | factorizations | residuals | new/old wall |",
+            "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|"]
     with tempfile.TemporaryDirectory() as tmp:
-        for label, args, _ in cases(a.cases, a.elements):
+        for label, args, _ in cases(a.cases, a.elements, a.cantilever_variants):
             res = {"old": [], "new": []}
             for _ in range(a.repeat):
                 for which in ("old", "new"):
@@ -115,10 +121,11 @@ def main():
                 rs = res[which]
                 ev = rs[-1][2]
                 ratio = statistics.median(r[0] for r in rs) / med_old
-                rows.append("| %s | %s | %s | %s | %s | %s | %d | %d | %s |" % (
+                rows.append("| %s | %s | %s | %s | %s | %s | %s | %d | %d | %s |" % (
                     label, which, fmt([r[0] for r in rs]), fmt([r[1] for r in rs]),
                     fmt([r[2].get("BoomStep", (0, 0))[1] for r in rs]),
-                    fmt([r[2].get("BoomEigen", (0, 0))[1] for r in rs]), ev.get("PCSetUp", (0, 0))[0],
+                    fmt([r[2].get("BoomEigen", (0, 0))[1] for r in rs]),
+                    fmt([r[2].get("BoomOutput", (0, 0))[1] for r in rs]), ev.get("PCSetUp", (0, 0))[0],
                     ev.get("SNESFunctionEval", (0, 0))[0], "%.2f" % ratio if which == "new" else ""))
                 print(rows[-1], flush=True)
     text = "\n".join(rows) + "\n\nLoad average at the start: %.1f %.1f %.1f (2 cores).\n" % env_load

@@ -2,6 +2,7 @@
 """How far Jacobian reuse moves each scene's results, against its time-step error.
 
     /usr/bin/python3 benchmarks/reuse_vs_step_error.py [--boomdyn build/boomdyn] [--scenes a b ...] [--jobs 2]
+        [--reference "-boom_jacobian_reuse 0"] [--variant "-boom_jacobian_reuse 1"]
 
 For every scene of inputs/ (or the ones named) this runs boomdyn three times,
 one rank, and extracts the regression digest of each run
@@ -11,7 +12,10 @@ one rank, and extracts the regression digest of each run
   reuse   -boom_jacobian_reuse 1             (modified Newton, step h)
   half    -boom_jacobian_reuse 0 -ts_dt h/2  (full Newton, half the step; dynamic scenes only)
 
-and prints, per scene, the largest difference reuse - full and the largest
+(--reference and --variant replace the options of "full" and "reuse", so
+that any default can be judged the same way: --reference
+"-boom_acceleration_predictor 0" --variant "" measures the Newton predictor;
+"half" is the reference with -ts_dt h/2), and prints, per scene, the largest difference reuse - full and the largest
 difference half - full over the real-valued digest entries, each relative to
 the size of its family (the rule the digest comparison uses: a sensor
 component near zero is measured against the largest value of that sensor),
@@ -70,16 +74,16 @@ def differences(ref, other, scale):
     return out
 
 
-def study(boomdyn, scene, tmp):
+def study(boomdyn, scene, tmp, reference, variant):
     h = scene_step(scene)
     stem = scene.stem
-    full = run(boomdyn, scene, tmp / f"{stem}_full.h5", ["-boom_jacobian_reuse", "0"])
-    reuse = run(boomdyn, scene, tmp / f"{stem}_reuse.h5", ["-boom_jacobian_reuse", "1"])
+    full = run(boomdyn, scene, tmp / f"{stem}_full.h5", reference)
+    reuse = run(boomdyn, scene, tmp / f"{stem}_reuse.h5", variant)
     scale = digest.family_scales(list(full.items()))
     move = differences(full, reuse, scale)
     step = {}
     if h is not None:
-        half = run(boomdyn, scene, tmp / f"{stem}_half.h5", ["-boom_jacobian_reuse", "0", "-ts_dt", repr(h / 2)])
+        half = run(boomdyn, scene, tmp / f"{stem}_half.h5", reference + ["-ts_dt", repr(h / 2)])
         step = differences(full, half, scale)
     return stem, move, step
 
@@ -89,14 +93,17 @@ def main():
     ap.add_argument("--boomdyn", type=Path, default=ROOT / "build" / "boomdyn")
     ap.add_argument("--scenes", nargs="*", help="scene stems (default: every scene of inputs/)")
     ap.add_argument("--jobs", type=int, default=2)
+    ap.add_argument("--reference", default="-boom_jacobian_reuse 0", help="options of the reference run (and of h/2)")
+    ap.add_argument("--variant", default="-boom_jacobian_reuse 1", help="options of the run it is compared with")
     args = ap.parse_args()
+    reference, variant = args.reference.split(), args.variant.split()
     scenes = sorted((ROOT / "inputs").glob("*.yaml"))
     if args.scenes:
         scenes = [s for s in scenes if s.stem in args.scenes]
-    print("| scene | reuse - full (largest, key) | h/2 - h (largest, key) | reuse - full at that key, / its step error | largest move / step error |")
+    print("| scene | variant - reference (largest, key) | h/2 - h (largest, key) | variant - reference at that key, / its step error | largest move / step error |")
     print("|---|---|---|---|---:|")
     with tempfile.TemporaryDirectory() as d, concurrent.futures.ThreadPoolExecutor(args.jobs) as pool:
-        for stem, move, step in pool.map(lambda s: study(args.boomdyn, s, Path(d)), scenes):
+        for stem, move, step in pool.map(lambda s: study(args.boomdyn, s, Path(d), reference, variant), scenes):
             km = max(move, key=move.get) if move else None
             ks = max(step, key=step.get) if step else None
             ratios = {k: move[k] / step[k] for k in move if k in step and step[k] > 1e-12}

@@ -166,11 +166,12 @@ private:
 };
 
 inline DynamicHistory runDynamic(const Scene &scene, MPI_Comm comm = PETSC_COMM_WORLD, double errorTolerance = 0,
-                                 bool kinkRestart = true)
+                                 bool kinkRestart = true, bool accelerationPredictor = true)
 {
   DynamicHistory h;
   SimulationOptions options = testOptions(errorTolerance);
-  options.kinkRestart = kinkRestart; // -boom_kink_restart
+  options.kinkRestart = kinkRestart;                     // -boom_kink_restart
+  options.accelerationPredictor = accelerationPredictor; // -boom_acceleration_predictor
   Simulation sim(scene, comm, options);
   check(sim.setUp());
   sim.addMonitor(std::make_unique<HistoryRecorder>(sim, h));
@@ -198,10 +199,10 @@ inline DynamicHistory runDynamic(const Scene &scene, MPI_Comm comm = PETSC_COMM_
 // runDynamic with one boomdyn option set (e.g. "-boom_schur_dd", "1") for
 // this run only.
 inline DynamicHistory runDynamicWithOption(const Scene &scene, MPI_Comm comm, const char *name, const char *value,
-                                           bool kinkRestart = true)
+                                           bool kinkRestart = true, bool accelerationPredictor = true)
 {
   PetscOptionsSetValue(nullptr, name, value);
-  DynamicHistory h = runDynamic(scene, comm, 0, kinkRestart);
+  DynamicHistory h = runDynamic(scene, comm, 0, kinkRestart, accelerationPredictor);
   PetscOptionsClearValue(nullptr, name);
   return h;
 }

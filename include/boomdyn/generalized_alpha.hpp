@@ -75,6 +75,10 @@ public:
   // and restart there. Set before initialize().
   void setKinkRestart(bool on) { kinkRestart_ = on; }
   bool kinkRestart() const { return kinkRestart_; }
+  // -boom_acceleration_predictor (default on): start Newton from
+  // q_n + h v_n + h^2/2 a_n whenever that predicted the last step's
+  // solution better than q_n + h v_n (docs/model.md §4.2). Set before initialize().
+  void setAccelerationPredictor(bool on) { accelerationPredictor_ = on; }
   // Impulse of the last velocity projection (N s or N m s) in the
   // multiplier entries, SI units; zero before any.
   Vec lastImpulse() const { return impulse_; }
@@ -116,6 +120,10 @@ private:
   double t_ = 0, massScale_ = 1, errorTolerance_ = 0;
   bool hasDrives_ = false; // some constraint depends on time (its power needs the multipliers)
   bool kinkRestart_ = true;
+  bool accelerationPredictor_ = true;
+  // The next step starts from q_n + h v_n + h^2/2 a_n (else q_n + h v_n):
+  // chosen after each step by which of the two was closer to its solution.
+  bool predictWithAcceleration_ = false;
   double impulseWork_ = 0; // kinetic energy added by the velocity projections so far [J]
   std::vector<double> breakpoints_; // sorted velocity kinks of all drives and breakpoints of work items
   std::vector<double> driveKinks_;  // sorted velocity kinks of the drives alone (where to project velocities)

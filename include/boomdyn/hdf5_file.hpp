@@ -65,6 +65,17 @@ public:
   void writeArray(const std::string &datasetPath, const std::vector<double> &data,
                   const std::vector<std::size_t> &dims);
   void writeArray(const std::string &datasetPath, const std::vector<int> &data, const std::vector<std::size_t> &dims);
+  // A new group of new double datasets (name, data, dims as writeArray)
+  // with one double attribute: the group's path is looked up once, not once
+  // per dataset (the /paraview snapshots: those lookups were most of their
+  // output time, docs/performance.md).
+  struct NamedArray {
+    std::string name;
+    const std::vector<double> *data;
+    std::vector<std::size_t> dims;
+  };
+  void writeGroup(const std::string &groupPath, const std::vector<NamedArray> &arrays, const std::string &attribute,
+                  double value);
 
   // Time series: an extendible chunked dataset of shape (n, ncols), created
   // by the first call and grown by one row per call. The dataset handle is

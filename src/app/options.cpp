@@ -130,6 +130,10 @@ PetscErrorCode readRunOptions(PetscOptionItems *PetscOptionsObject, AppOptions *
                        "Land a step on every velocity kink of a drive and restart there (velocity projection, "
                        "consistent accelerations); 0: step through kinks (oscillating multipliers)",
                        &o->kinkRestart));
+  PetscCall(optionBool(PetscOptionsObject, "-boom_acceleration_predictor",
+                       "Start Newton from q + h v + h^2/2 a whenever that predicted the previous step better than "
+                       "q + h v (0: always q + h v)",
+                       &o->accelerationPredictor));
   PetscCall(optionNumber(PetscOptionsObject, "-boom_checkpoint_interval",
                          "Simulated time between checkpoints (0: only when interrupted)", &o->checkpointInterval));
   o->checkpointPath = withoutExtension(o->outputPath, ".h5") + ".chk.h5";

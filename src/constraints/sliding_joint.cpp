@@ -12,8 +12,14 @@ using Mat2 = Eigen::Matrix2d;
 using Vec4 = Eigen::Vector4d;
 using Mat4 = Eigen::Matrix4d;
 
-// g(d, t) = (A t) . d / |t| and its gradient and Hessian in z = (d, t).
-void rowFunction(const Mat2 &A, const Vec2 &d, const Vec2 &t, double &g, Vec4 &gz, Mat4 &gzz)
+// Up to 8 + 8 coordinates of the two bodies and the slack coordinate: the
+// work arrays of a row evaluation live on the stack (a residual evaluates
+// every joint, and heap temporaries were a visible part of its cost).
+constexpr int kMaxCoordinates = 17;
+using ZJacobian = Eigen::Matrix<double, 4, Eigen::Dynamic, Eigen::ColMajor, 4, kMaxCoordinates>;
+
+// g(d, t) = (A t) . d / |t| and its gradient, and with gzz its Hessian, in z = (d, t).
+void rowFunction(const Mat2 &A, const Vec2 &d, const Vec2 &t, double &g, Vec4 &gz, Mat4 *gzzOut)
 {
   const double J = t.norm(), J3 = J * J * J, J5 = J3 * J * J;
   const Vec2 At = A * t, Atd = A.transpose() * d;
@@ -21,6 +27,8 @@ void rowFunction(const Mat2 &A, const Vec2 &d, const Vec2 &t, double &g, Vec4 &g
   g = c / J;
   gz.head<2>() = At / J;
   gz.tail<2>() = Atd / J - c * t / J3;
+  if (!gzzOut) return; // the residual needs C and C_q only
+  Mat4 &gzz = *gzzOut;
   gzz.setZero();
   const Mat2 ddt = A / J - At * t.transpose() / J3; // d/dt of (A t / J)
   gzz.block<2, 2>(0, 2) = ddt;
@@ -98,7 +106,7 @@ void SlidingJoint::evaluateRows(const double *q, const double *v, const double *
   const Vec2 d = ti.r[0] - sj.r[0], t = ti.r[1];
 
   // z = (d, t) and z_q (4 x n): d = r_i(s) - r_j, t = r_i'(s).
-  Eigen::MatrixXd zq = Eigen::MatrixXd::Zero(4, n);
+  ZJacobian zq = ZJacobian::Zero(4, n);
   zq.block(0, 0, 2, ni) = ti.r_q[0].leftCols(ni);
   zq.block(0, ni, 2, nj) = -sj.r_q[0].leftCols(nj);
   zq.block(0, is, 2, 1) = ti.r[1];
@@ -111,7 +119,7 @@ void SlidingJoint::evaluateRows(const double *q, const double *v, const double *
   double g[2];
   Vec4 gz[2];
   Mat4 gzz[2];
-  for (int k = 0; k < 2; ++k) rowFunction(A[k], d, t, g[k], gz[k], gzz[k]);
+  for (int k = 0; k < 2; ++k) rowFunction(A[k], d, t, g[k], gz[k], v || w ? &gzz[k] : nullptr);
   out.C.resize(2);
   out.Cq.resize(2, n);
   for (int k = 0; k < 2; ++k) {

@@ -240,6 +240,14 @@ struct Hdf5File::Impl {
   {
     const std::string dataset = normalizePath(datasetPath);
     requireNew(dataset);
+    createDataset(file.get(), dataset, dataset, fileType, memType, dims, buffer);
+  }
+
+  // The dataset `name` below the open object `location` (the file, or a
+  // group just created), `shown` in messages; no lookups of its path.
+  void createDataset(hid_t location, const std::string &name, const std::string &shown, hid_t fileType,
+                     hid_t memType, const std::vector<std::size_t> &dims, const void *buffer) const
+  {
     double bytes = double(H5Tget_size(memType));
     for (std::size_t d : dims) bytes *= double(d);
     ensureSpace(bytes);
@@ -247,14 +255,14 @@ struct Hdf5File::Impl {
     Handle space(dims.empty() ? H5Screate(H5S_SCALAR)
                               : H5Screate_simple(static_cast<int>(extent.size()), extent.data(), nullptr),
                  H5Sclose);
-    checkId(space.get(), "cannot make the dataspace of '" + dataset + "'");
-    Handle handle(checkId(H5Dcreate2(file.get(), dataset.c_str(), fileType, space.get(), linkCreate.get(),
-                                     H5P_DEFAULT, H5P_DEFAULT),
-                          "cannot create dataset '" + dataset + "'"),
+    checkId(space.get(), "cannot make the dataspace of '" + shown + "'");
+    Handle handle(checkId(H5Dcreate2(location, name.c_str(), fileType, space.get(), linkCreate.get(), H5P_DEFAULT,
+                                     H5P_DEFAULT),
+                          "cannot create dataset '" + shown + "'"),
                   H5Dclose);
     if (H5Sget_simple_extent_npoints(space.get()) > 0)
       checkStatus(H5Dwrite(handle.get(), memType, H5S_ALL, H5S_ALL, H5P_DEFAULT, buffer),
-                  "cannot write '" + dataset + "'");
+                  "cannot write '" + shown + "'");
   }
 
   Series &findOrCreateSeries(const std::string &dataset, hid_t fileType, hid_t memType, int rank, std::size_t ncols)
@@ -523,6 +531,29 @@ void Hdf5File::writeArray(const std::string &datasetPath, const std::vector<doub
   Impl &impl = live();
   requireShape(path(), datasetPath, data.size(), dims);
   impl.writeDataset(datasetPath, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, dims, data.data());
+}
+
+void Hdf5File::writeGroup(const std::string &groupPath, const std::vector<NamedArray> &arrays,
+                          const std::string &attribute, double value)
+{
+  Impl &impl = live();
+  const std::string group = normalizePath(groupPath);
+  for (const NamedArray &a : arrays) requireShape(path(), group + "/" + a.name, a.data->size(), a.dims);
+  impl.requireNew(group);
+  Handle handle(impl.checkId(H5Gcreate2(impl.file.get(), group.c_str(), impl.linkCreate.get(), H5P_DEFAULT, H5P_DEFAULT),
+                             "cannot create group '" + group + "'"),
+                H5Gclose);
+  impl.groups.insert(group);
+  for (const NamedArray &a : arrays)
+    impl.createDataset(handle.get(), a.name, group + "/" + a.name, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, a.dims,
+                       a.data->data());
+  Handle space(impl.checkId(H5Screate(H5S_SCALAR), "cannot make a dataspace"), H5Sclose);
+  Handle stored(impl.checkId(H5Acreate2(handle.get(), attribute.c_str(), H5T_IEEE_F64LE, space.get(), H5P_DEFAULT,
+                                        H5P_DEFAULT),
+                             "cannot create attribute '" + attribute + "' of '" + group + "'"),
+                H5Aclose);
+  impl.checkStatus(H5Awrite(stored.get(), H5T_NATIVE_DOUBLE, &value),
+                   "cannot write attribute '" + attribute + "' of '" + group + "'");
 }
 
 void Hdf5File::writeArray(const std::string &datasetPath, const std::vector<int> &data,

@@ -300,19 +300,18 @@ void ResultsWriter::writeSampledBooms(double t, const std::vector<double> &q, co
   const std::size_t np = points.size() / 3, ns = segments.size() / 2;
   const std::string base = "/paraview/" + std::to_string(snapshotTimes_.size());
   if (snapshotTimes_.empty()) file_->writeArray("/paraview/segments", segments, {ns, 2});
-  file_->writeArray(base + "/points", points, {np, 3});
-  file_->writeArray(base + "/velocity", velocity, {np, 3});
-  file_->writeArray(base + "/axial_strain", strain, {np});
-  file_->writeArray(base + "/curvature", curvature, {np});
-  file_->setAttribute(base, "time", t);
+  std::vector<Hdf5File::NamedArray> arrays = {
+    {"points", &points, {np, 3}}, {"velocity", &velocity, {np, 3}}, {"axial_strain", &strain, {np}},
+    {"curvature", &curvature, {np}}};
   // The ropes as polylines through their pulleys (rope_polylines.hpp).
   std::vector<double> ropePoints;
   std::vector<int> ropeSegments;
   ropePolylines(ropes_, q, ropePoints, ropeSegments);
   if (!ropeSegments.empty()) {
     if (snapshotTimes_.empty()) file_->writeArray("/paraview/rope_segments", ropeSegments, {ropeSegments.size() / 2, 2});
-    file_->writeArray(base + "/rope_points", ropePoints, {ropePoints.size() / 3, 3});
+    arrays.push_back({"rope_points", &ropePoints, {ropePoints.size() / 3, 3}});
   }
+  file_->writeGroup(base, arrays, "time", t);
   ropePoints_ = ropePoints.size() / 3, ropeSegments_ = ropeSegments.size() / 2;
   snapshotTimes_.push_back(t);
   sampledPoints_ = np, sampledSegments_ = ns;

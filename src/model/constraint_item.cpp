@@ -18,7 +18,9 @@ void ConstraintItem::multiplierRows(std::vector<PetscInt> &rows) const
 void ConstraintItem::evaluate(const AssemblyContext &ctx, const ItemValues &in, double *residual, double *J) const
 {
   if (!ctx.constraintBlocks) return; // B pencil: the item contributes explicit zeros only
-  std::vector<PetscInt> dofs;
+  // Only the count is needed here: one buffer for all calls instead of a
+  // heap allocation per constraint and residual.
+  thread_local std::vector<PetscInt> dofs;
   constraint_->coordinates(dofs);
   const int nc = static_cast<int>(dofs.size()), m = constraint_->numRows(), n = nc + m;
   const Eigen::Map<const Eigen::VectorXd> lam(in.lambda, m);

@@ -33,6 +33,7 @@ PetscErrorCode Simulation::setUp()
     PetscCall(integrator_->setUp(scene_.dynamic.max_newton));
     integrator_->setErrorTolerance(options_.adaptiveTolerance);
     integrator_->setKinkRestart(options_.kinkRestart);
+    integrator_->setAccelerationPredictor(options_.accelerationPredictor);
     auto energy = std::make_unique<EnergyCheck>(options_.energyTolerance, assembler_);
     energy_ = energy.get();
     monitors_.push_back(std::move(energy));

@@ -304,6 +304,35 @@ TEST_F(Hdf5FileTest, AppendedRowsRoundTripExactly)
   EXPECT_EQ(H5Pget_layout(layout), H5D_CHUNKED);
 }
 
+// writeGroup (the /paraview snapshots): the same datasets and attribute as
+// writeArray and setAttribute would give, in a new group; an existing group
+// or a wrong shape is refused with the path, and nothing is half-written.
+TEST_F(Hdf5FileTest, GroupOfArraysRoundTripsExactly)
+{
+  const std::string path = outputPath("group");
+  const std::vector<double> points{1.0, -2.0, 0.0, 1.0 / 3.0, 1e-310, -0.0}, strain{0.5, -0.25};
+  {
+    Hdf5File out(path, false);
+    out.writeGroup("/paraview/0", {{"points", &points, {2, 3}}, {"axial_strain", &strain, {2}}}, "time", 0.125);
+    out.writeGroup("paraview/1", {{"points", &points, {2, 3}}}, "time", 1.0 / 3.0);
+    EXPECT_NE(messageOf([&] { out.writeGroup("/paraview/1", {{"points", &points, {2, 3}}}, "time", 0.0); })
+                .find("/paraview/1"),
+              std::string::npos);
+    EXPECT_NE(messageOf([&] { out.writeGroup("/paraview/2", {{"points", &points, {3, 3}}}, "time", 0.0); })
+                .find("/paraview/2/points"),
+              std::string::npos);
+  }
+  Id file(openReadOnly(path), H5Fclose);
+  const std::vector<double> back = readDoubles(file, "/paraview/0/points", {2, 3});
+  EXPECT_EQ(back, points);
+  EXPECT_TRUE(std::signbit(back[5]));
+  EXPECT_EQ(readDoubles(file, "/paraview/0/axial_strain", {2}), strain);
+  EXPECT_EQ(readDoubles(file, "/paraview/1/points", {2, 3}), points);
+  EXPECT_EQ(readScalarAttribute<double>(file, "/paraview/0", "time", H5T_NATIVE_DOUBLE), 0.125);
+  EXPECT_EQ(readScalarAttribute<double>(file, "/paraview/1", "time", H5T_NATIVE_DOUBLE), 1.0 / 3.0);
+  EXPECT_EQ(H5Lexists(file, "/paraview/2", H5P_DEFAULT), 0);
+}
+
 TEST_F(Hdf5FileTest, MisuseIsRefusedWithThePath)
 {
   const std::string path = outputPath("misuse");
