@@ -215,8 +215,10 @@ void Assembler::gather(std::size_t k, ItemValues &vals)
   vals.lambda = bl_.data() + nc;
 }
 
-PetscErrorCode Assembler::evaluate(const AssemblyContext &ctx, Vec x, Vec F, Mat J)
+PetscErrorCode Assembler::evaluate(const AssemblyContext &context, Vec x, Vec F, Mat J)
 {
+  AssemblyContext ctx = context;
+  ctx.residualWanted = F != nullptr;
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(logEvents().assembly, 0, 0, 0, 0));
   PetscCall(beginLocal(ctx, x));
