@@ -1,6 +1,8 @@
 // Assembly micro-benchmarks: Assembler::evaluate (residual only; residual +
 // Jacobian) on the cantilever of inputs/cantilever_dynamic.yaml with N
-// elements, in a generalized-α iteration context at a deformed state, and,
+// elements and on the 100 m boom of benchmarks/scenes/long_boom.yaml (whose
+// elements use the assumed axial strain, which the 2 m cantilever's stocky
+// elements skip), in a generalized-α iteration context at a deformed state, and,
 // for comparison, the bare loop over the work items' evaluate() with their
 // values gathered beforehand (no scatter, no COO insertion). Times are
 // reported per call and per element (counter `per_element`).
@@ -12,7 +14,10 @@
 
 #include <algorithm>
 #include <map>
+#include <vector>
 #include <memory>
+#include <string>
+#include <utility>
 
 using namespace boomdyn;
 
@@ -40,22 +45,23 @@ struct AssemblyFixture {
 // Built once per size and kept: Google Benchmark calls a benchmark function
 // several times (to pick the iteration count), and setting up 65536 elements
 // is far slower than one evaluation.
-std::map<int, std::unique_ptr<AssemblyFixture>> &fixtures()
+std::map<std::pair<std::string, int>, std::unique_ptr<AssemblyFixture>> &fixtures()
 {
-  static std::map<int, std::unique_ptr<AssemblyFixture>> f;
+  static std::map<std::pair<std::string, int>, std::unique_ptr<AssemblyFixture>> f;
   return f;
 }
 
-AssemblyFixture &cantilever(int elements)
+// The scene's boom with N elements, deformed by `size` (a few per mille of an element's length).
+AssemblyFixture &boom(const std::string &file, int elements, double size)
 {
-  auto &slot = fixtures()[elements];
+  auto &slot = fixtures()[{file, elements}];
   if (slot) return *slot;
-  Scene scene = sceneFromFile("inputs/cantilever_dynamic.yaml");
+  Scene scene = sceneFromFile(file);
   scene.bodies.at(0).elements = elements;
   slot = std::make_unique<AssemblyFixture>(scene);
   AssemblyFixture &f = *slot;
   f.elements = elements;
-  f.state = deformedState(f.model);
+  f.state = deformedState(f.model, 1, size);
   PetscCallAbort(PETSC_COMM_WORLD, f.assembler.setUp(PETSC_COMM_WORLD));
   PetscCallAbort(PETSC_COMM_WORLD, f.assembler.createVector(&f.x));
   PetscCallAbort(PETSC_COMM_WORLD, f.assembler.createVector(&f.F));
@@ -74,39 +80,58 @@ AssemblyFixture &cantilever(int elements)
   return f;
 }
 
-void perElement(benchmark::State &state, int elements)
+AssemblyFixture &cantilever(int elements) { return boom("inputs/cantilever_dynamic.yaml", elements, 1e-3); }
+AssemblyFixture &longBoom(int elements) { return boom("benchmarks/scenes/long_boom.yaml", elements, 1e-6); }
+
+void perElement(benchmark::State &state, const AssemblyFixture &f)
 {
+  const int elements = f.elements;
   // Inverted rate: seconds per element (printed with an SI prefix, e.g. "55n s").
   state.counters["per_element"] =
     benchmark::Counter(static_cast<double>(elements), benchmark::Counter::kIsIterationInvariantRate |
                                                           benchmark::Counter::kInvert);
-  state.counters["unknowns"] = static_cast<double>(cantilever(elements).model.size());
+  state.counters["unknowns"] = static_cast<double>(f.model.size());
 }
 
-void BM_Assembly_Residual(benchmark::State &state)
+void assembly(benchmark::State &state, AssemblyFixture &f, bool residual, bool jacobian)
 {
-  const int n = static_cast<int>(state.range(0));
-  AssemblyFixture &f = cantilever(n);
   const AssemblyContext ctx = dynamicContext();
-  for (auto _ : state) PetscCallAbort(PETSC_COMM_WORLD, f.assembler.evaluate(ctx, f.x, f.F, nullptr));
-  perElement(state, n);
+  for (auto _ : state)
+    PetscCallAbort(PETSC_COMM_WORLD, f.assembler.evaluate(ctx, f.x, residual ? f.F : nullptr, jacobian ? f.J : nullptr));
+  perElement(state, f);
 }
 
-void BM_Assembly_ResidualJacobian(benchmark::State &state)
+void BM_Assembly_Residual(benchmark::State &s) { assembly(s, cantilever(static_cast<int>(s.range(0))), true, false); }
+void BM_Assembly_ResidualJacobian(benchmark::State &s)
 {
-  const int n = static_cast<int>(state.range(0));
-  AssemblyFixture &f = cantilever(n);
-  const AssemblyContext ctx = dynamicContext();
-  for (auto _ : state) PetscCallAbort(PETSC_COMM_WORLD, f.assembler.evaluate(ctx, f.x, f.F, f.J));
-  perElement(state, n);
+  assembly(s, cantilever(static_cast<int>(s.range(0))), true, true);
 }
+// The same with the caches flushed before every evaluation (128 MB written
+// outside the timing), as in a run, where the triangular solves of the
+// factors (~100 MB at 10^5 elements) come between two residuals.
+void BM_LongBoom_ResidualCold(benchmark::State &state)
+{
+  AssemblyFixture &f = longBoom(static_cast<int>(state.range(0)));
+  const AssemblyContext ctx = dynamicContext();
+  std::vector<double> flush(16 << 20);
+  for (auto _ : state) {
+    state.PauseTiming();
+    for (std::size_t i = 0; i < flush.size(); i += 8) flush[i] += 1.0;
+    benchmark::ClobberMemory();
+    state.ResumeTiming();
+    PetscCallAbort(PETSC_COMM_WORLD, f.assembler.evaluate(ctx, f.x, f.F, nullptr));
+  }
+  perElement(state, f);
+}
+
+// What the solvers ask for on the long boom: residuals, and the Jacobian alone (SNES's formJacobian).
+void BM_LongBoom_Residual(benchmark::State &s) { assembly(s, longBoom(static_cast<int>(s.range(0))), true, false); }
+void BM_LongBoom_Jacobian(benchmark::State &s) { assembly(s, longBoom(static_cast<int>(s.range(0))), false, true); }
 
 // The work items alone: what the assembler's loop costs without the scatter,
 // the gather and the insertion into PETSc.
-void itemLoop(benchmark::State &state, bool jacobian)
+void itemLoop(benchmark::State &state, AssemblyFixture &f, bool jacobian)
 {
-  const int n = static_cast<int>(state.range(0));
-  AssemblyFixture &f = cantilever(n);
   const AssemblyContext ctx = dynamicContext();
   for (auto _ : state) {
     for (ItemBuffers &b : f.items) {
@@ -116,11 +141,12 @@ void itemLoop(benchmark::State &state, bool jacobian)
     }
     benchmark::ClobberMemory();
   }
-  perElement(state, n);
+  perElement(state, f);
 }
 
-void BM_ItemsOnly_Residual(benchmark::State &state) { itemLoop(state, false); }
-void BM_ItemsOnly_ResidualJacobian(benchmark::State &state) { itemLoop(state, true); }
+void BM_ItemsOnly_Residual(benchmark::State &s) { itemLoop(s, cantilever(static_cast<int>(s.range(0))), false); }
+void BM_ItemsOnly_ResidualJacobian(benchmark::State &s) { itemLoop(s, cantilever(static_cast<int>(s.range(0))), true); }
+void BM_LongBoomItemsOnly_Residual(benchmark::State &s) { itemLoop(s, longBoom(static_cast<int>(s.range(0))), false); }
 
 void sizes(benchmark::internal::Benchmark *b)
 {
@@ -134,6 +160,10 @@ BENCHMARK(BM_Assembly_Residual)->Apply(sizes);
 BENCHMARK(BM_Assembly_ResidualJacobian)->Apply(sizes);
 BENCHMARK(BM_ItemsOnly_Residual)->Apply(sizes);
 BENCHMARK(BM_ItemsOnly_ResidualJacobian)->Apply(sizes);
+BENCHMARK(BM_LongBoom_Residual)->Arg(100000)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_LongBoom_Jacobian)->Arg(100000)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_LongBoom_ResidualCold)->Arg(100000)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_LongBoomItemsOnly_Residual)->Arg(100000)->Unit(benchmark::kMicrosecond);
 
 void releaseAssemblyFixtures() { fixtures().clear(); }
 

@@ -31,20 +31,21 @@ inline AssemblyContext dynamicContext()
 }
 
 // A global state x = [q | lambda] and its rates: the model's initial
-// coordinates with a small pseudo-random deformation (1e-3 of the entries'
-// scale), random velocities and accelerations, nonzero multipliers.
+// coordinates with a small pseudo-random deformation (`size`, 1e-3 by
+// default: a few per mille of the entries' scale on elements of 0.1 m),
+// random velocities and accelerations, nonzero multipliers.
 struct GlobalState {
   std::vector<double> q, v, a, x; // q, v, a: coordinates; x: whole unknown vector (multipliers at the end)
 };
 
-inline GlobalState deformedState(const Model &model, unsigned seed = 1)
+inline GlobalState deformedState(const Model &model, unsigned seed = 1, double size = 1e-3)
 {
   std::mt19937 rng(seed);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
   GlobalState s;
   s.q = model.initialCoordinates();
   const std::size_t nq = s.q.size();
-  for (double &qi : s.q) qi += 1e-3 * u(rng);
+  for (double &qi : s.q) qi += size * u(rng);
   // Keep the slack coordinates of sliding joints where they were (inside their element).
   const std::vector<double> q0 = model.initialCoordinates();
   for (const auto &j : model.slidingJoints()) s.q[j->slackIndex()] = q0[j->slackIndex()] + 1e-4;

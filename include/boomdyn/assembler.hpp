@@ -1,7 +1,8 @@
 // Assembly of the residual and Jacobian of the saddle-point system into
 // PETSc objects. Each rank evaluates the work items whose first coordinate
 // it owns; the values they need arrive through one VecScatter into a local
-// array, residuals return by a reverse scatter (ADD), and Jacobian blocks go
+// array (on one rank x's own array, no scatter), residuals return by a
+// reverse scatter (ADD; on one rank straight into F), and Jacobian blocks go
 // through MatSetValuesCOO on a pattern preallocated exactly once from the
 // items' dof lists (docs/petsc-notes.md, trap 1 and 2: one pattern, never mixed with
 // MatSetValues).
@@ -68,7 +69,10 @@ public:
 
 private:
   PetscErrorCode buildPattern();
-  PetscErrorCode scatterAndMap(const AssemblyContext &ctx, Vec x);
+  // The local values of x (scattered, or x's own array in place) for the
+  // items' gathers, with the coefficients of the map; endLocal() releases them.
+  PetscErrorCode beginLocal(const AssemblyContext &ctx, Vec x);
+  PetscErrorCode endLocal();
   void gather(std::size_t k, ItemValues &vals);
 
   const Model &model_;
@@ -85,8 +89,11 @@ private:
   std::vector<PetscScalar> cooV_;
   std::vector<double> qc_, vc_, ac_;  // local offsets
   std::vector<char> firstOrder_;      // local entries that are first-order states
-  std::vector<double> q_, v_, a_, x_; // local mapped values; x_: the unknowns as given (multipliers)
-  std::vector<double> bq_, bv_, ba_, bl_, br_, bJ_; // per-item buffers
+  bool inPlace_ = false;              // local vector = this rank's part of x, same order (no scatter)
+  Vec localSource_ = nullptr;         // between beginLocal and endLocal: x or xLocal_
+  const PetscScalar *xl_ = nullptr;   // its array
+  Kinematics kin_;                    // the map's coefficients
+  std::vector<double> bq_, bv_, ba_, bl_, br_; // per-item buffers (the Jacobian goes into cooV_)
 };
 
 } // namespace boomdyn

@@ -46,6 +46,8 @@ public:
   // Whether the last increment of every block was below the round-off of
   // the increments (100 eps |q|): the iterate cannot get more accurate.
   bool incrementAtRoundoff() const { return incrementAtRoundoff_; }
+  // That round-off of the increments (100 eps |q|) at the last test.
+  double incrementRoundoff() const { return roundoff_; }
 
 private:
   MPI_Comm comm_ = MPI_COMM_NULL;
@@ -56,6 +58,7 @@ private:
   std::array<double, NumBlocks> previousIncrement_{};
   int lastHolder_ = -1;
   bool incrementAtRoundoff_ = false;
+  double roundoff_ = 0;
 };
 
 } // namespace boomdyn

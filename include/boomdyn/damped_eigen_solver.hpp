@@ -51,7 +51,9 @@ struct DampedModalOptions {
 // Jacobian with Kinematics{cQ = 0, cV = 1, cA = 0} at zero velocity, no
 // constraint blocks. First-order states (LuGre z) keep zero rate and no
 // D entry: as in the symmetric pencil they are algebraic (infinite modes).
-PetscErrorCode assembleDamping(Assembler &assembler, double t, Vec q, Vec lambda, Mat D);
+// sigma > 0: the constraint scale of the pencil at the same state
+// (assemblePencil's sigmaOut), not computed again; 0: computed here.
+PetscErrorCode assembleDamping(Assembler &assembler, double t, Vec q, Vec lambda, Mat D, double sigma = 0);
 
 // Appends the mode lambda, x = xr + i xi to *result: omega_d, omega, zeta,
 // the residual, the vector (keepVector) and the shape on rank 0 (the real

@@ -53,6 +53,10 @@ public:
   // Fill DampedModalResult::real, imag (tracking without a consumer of the
   // vectors skips their copies).
   bool keepVectors = true;
+  // The constraint scale of the pencil K, M at this state (ModeRefiner::
+  // pencilScale()), so that D is assembled without computing it again;
+  // 0: computed (assembleDamping).
+  double pencilScale = 0;
   int maxSubspace = 48;
 
 private:

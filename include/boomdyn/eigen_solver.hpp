@@ -52,11 +52,15 @@ PetscInt finiteModeBound(const Model &model);
 
 // A and B of the pencil at (t, q, lambda) into matrices made by
 // assembler.createMatrix() (same pattern). Leaves the assembler's offsets at q.
-PetscErrorCode assemblePencil(Assembler &assembler, double t, Vec q, Vec lambda, Mat A, Mat B);
+// sigmaOut (optional): the scale of the constraint blocks used (pencilState).
+PetscErrorCode assemblePencil(Assembler &assembler, double t, Vec q, Vec lambda, Mat A, Mat B,
+                              double *sigmaOut = nullptr);
 
 // The state x = [q | lambda / sigma] at which the pencil is assembled
 // (x made by assembler.createVector()), and sigma, the scale of the
-// constraint blocks (a typical stiffness diagonal).
+// constraint blocks (a typical stiffness diagonal). With *sigma > 0 on
+// entry that scale is used as given (the same state's pencil computed it
+// already: one pass over the elements less per analysis).
 PetscErrorCode pencilState(Assembler &assembler, Vec q, Vec lambda, Vec x, double *sigma);
 
 // Coordinate part of v on rank 0 (empty elsewhere), divided by its entry of

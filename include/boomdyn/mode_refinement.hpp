@@ -51,6 +51,8 @@ public:
   Mat mass() const { return B_; }
   KSP shiftedSolver() const { return ksp_; }
   bool factoredAtLastPrepare() const { return factored_; }
+  // The constraint scale sigma of the last prepare()'s pencil (pencilState).
+  double pencilScale() const { return sigma_; }
 
 private:
 
@@ -59,6 +61,7 @@ private:
   PetscHandle<KSP> ksp_;
   int pattern_ = -1;
   bool factored_ = false;
+  double sigma_ = 0;
   LocalBlocks blocks_; // the vectors of the refinement as dense local blocks (local_block.hpp)
 };
 

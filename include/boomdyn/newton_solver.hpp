@@ -11,7 +11,9 @@
 // step size or another kind of solve), when the sparsity pattern changes, or
 // when it is older than a given number of solves. A convergence by a small
 // update with a kept matrix while the residual stagnates is accepted only
-// after a Newton step, unless the update is at round-off (100 eps |q|); a solve in which a kept matrix made the residual grow,
+// after a Newton step, unless the update is at round-off (100 eps |q|) or
+// at the round-off floor an earlier such Newton step showed (residual and
+// update at most twice the ones it left); a solve in which a kept matrix made the residual grow,
 // or that fails, is redone by full Newton from the same initial guess, so
 // reuse never turns a step full Newton solves into a rejected one.
 #pragma once
@@ -50,6 +52,9 @@ PetscErrorCode readNewtonOptions(MPI_Comm comm, const char *prefix, JacobianReus
 
 struct NewtonStatistics {
   PetscInt solves = 0, iterations = 0, jacobians = 0, retriesWithFreshJacobian = 0;
+  // Solves ended by a kept matrix's update at the round-off floor that an
+  // earlier Newton step showed (instead of by a Newton step).
+  PetscInt acceptedAtRoundoffFloor = 0;
 };
 
 class NewtonSolver {
@@ -100,6 +105,14 @@ private:
   PetscInt jacobianIteration_ = 0; // SNES iteration at which J_ was built (meaningful when jacobianFresh_)
   bool fullNewton_ = false;      // retrying a failed solve with a fresh matrix at every iterate
   PetscReal previousFnorm_ = 0;
+  // The round-off floor of the residual and of the update it produces, as a
+  // Newton step at a stagnating residual showed them (update relative to |x|).
+  struct RoundoffFloor {
+    bool known = false;
+    PetscReal update = 0, residual = 0;
+  };
+  RoundoffFloor floor_;
+  bool floorProbe_ = false; // the current iteration is such a Newton step
   bool blockTest_ = true;
   BlockConvergence blocks_;
 };

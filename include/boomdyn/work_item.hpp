@@ -47,6 +47,11 @@ struct AssemblyContext {
   // lands on t_b), true the state just after (the restart at t_b and the
   // diagnostics of the state reached). Items without jumps ignore it.
   bool rightLimit = false;
+  // False when the caller keeps only the Jacobian (Assembler::evaluate
+  // without F: the eigen-analysis' passes). An item may then skip forces
+  // that do not enter the Jacobian asked for (a beam's internal force in a
+  // mass or damping pass); the residual it writes is discarded.
+  bool residualWanted = true;
 };
 
 // Values of the item's unknowns, in the order of dofs(): q, v, a of the

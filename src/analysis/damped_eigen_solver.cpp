@@ -20,10 +20,9 @@ struct PetscDestroyer<PEP> {
   static PetscErrorCode destroy(PEP *pep) { return PEPDestroy(pep); }
 };
 
-PetscErrorCode assembleDamping(Assembler &assembler, double t, Vec q, Vec lambda, Mat D)
+PetscErrorCode assembleDamping(Assembler &assembler, double t, Vec q, Vec lambda, Mat D, double sigma)
 {
   PetscHandle<Vec> x, vc;
-  double sigma;
   PetscFunctionBeginUser;
   PetscCall(assembler.createVector(x.address()));
   PetscCall(pencilState(assembler, q, lambda, x, &sigma));

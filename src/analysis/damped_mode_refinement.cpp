@@ -338,7 +338,7 @@ PetscErrorCode DampedModeRefiner::refine(double t, Vec q, Vec lambda, Mat K, Mat
     PetscCall(assembler_.createMatrix(D_.address()));
     pattern_ = assembler_.patternVersion();
   }
-  PetscCall(assembleDamping(assembler_, t, q, lambda, D_));
+  PetscCall(assembleDamping(assembler_, t, q, lambda, D_, pencilScale));
   if (!blocks_.ready()) PetscCall(blocks_.setUp(modes[0]));
   const PetscInt n = blocks_.localSize(), nq = assembler_.model().numCoordinates();
   MultiplierFit multipliers;

@@ -94,9 +94,12 @@ PetscErrorCode pencilState(Assembler &assembler, Vec q, Vec lambda, Vec x, doubl
   // typical stiffness diagonal: with sigma = 1 they are ~1e-9 of K for steel
   // booms and MUMPS's threshold pivoting declares A - target B singular.
   // The eigenvalues do not depend on sigma.
-  PetscReal massScale, stiffScale;
-  PetscCall(assembler.characteristicScales(q, &massScale, &stiffScale));
-  const double sigma = stiffScale > 0 ? stiffScale : 1.0;
+  double sigma = *sigmaOut;
+  if (!(sigma > 0)) {
+    PetscReal massScale, stiffScale;
+    PetscCall(assembler.characteristicScales(q, &massScale, &stiffScale));
+    sigma = stiffScale > 0 ? stiffScale : 1.0;
+  }
   {
     PetscInt lo, hi;
     const PetscScalar *qa, *la;
@@ -114,10 +117,10 @@ PetscErrorCode pencilState(Assembler &assembler, Vec q, Vec lambda, Vec x, doubl
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode assemblePencil(Assembler &assembler, double t, Vec q, Vec lambda, Mat A, Mat B)
+PetscErrorCode assemblePencil(Assembler &assembler, double t, Vec q, Vec lambda, Mat A, Mat B, double *sigmaOut)
 {
   PetscHandle<Vec> x;
-  double sigma;
+  double sigma = 0; // computed by pencilState
   PetscFunctionBeginUser;
   PetscCall(assembler.createVector(x.address()));
   PetscCall(pencilState(assembler, q, lambda, x, &sigma));
@@ -132,7 +135,7 @@ PetscErrorCode assemblePencil(Assembler &assembler, double t, Vec q, Vec lambda,
   ctx.constraintBlocks = false;
   PetscCall(assembler.setOffsets(x, nullptr, nullptr)); // q = x (cQ = 0), so every kernel sees the real state
   PetscCall(assembler.evaluate(ctx, x, nullptr, B));
-
+  if (sigmaOut) *sigmaOut = sigma;
   PetscFunctionReturn(0);
 }
 

@@ -245,6 +245,7 @@ PetscErrorCode FrequencyTracker::analyzeDamped(double t, Vec q, Vec lambda, Trac
     pencilCurrent_ = factored;
     DampedRefinementInfo info;
     dampedRefiner_.keepVectors = modes != nullptr;
+    dampedRefiner_.pencilScale = refiner_.pencilScale(); // K and M of this state (prepare() above or in analyze())
     if (factored)
       PetscCall(dampedRefiner_.refine(t, q, lambda, refiner_.stiffness(), refiner_.mass(), refiner_.shiftedSolver(),
                                       basis_, found_, &dm, &info, &refined));

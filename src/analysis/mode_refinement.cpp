@@ -30,7 +30,7 @@ PetscErrorCode ModeRefiner::prepare(double t, Vec q, Vec lambda, double target, 
     }
     pattern_ = assembler_.patternVersion();
   }
-  PetscCall(assemblePencil(assembler_, t, q, lambda, A_, B_));
+  PetscCall(assemblePencil(assembler_, t, q, lambda, A_, B_, &sigma_));
   // A, B and S share one exact pattern (Assembler::createMatrix): the copy and
   // the update keep S's nonzero state, so the factorization below is numeric only.
   if (!S_) PetscCall(MatDuplicate(A_, MAT_COPY_VALUES, S_.address()));

@@ -175,8 +175,14 @@ struct AxialProjection {
   }
 };
 
-// The projection of eps (and, with edot, of its rate) for the section's axial treatment.
-AxialProjection projectAxialStrain(const Section &sec, double l, const Vec8 &e, const Vec8 *edot)
+// The projection of eps (and, with edot, of its rate) for the section's
+// axial treatment. The gradients d alpha_j / de (and d alphadot_j / de) are
+// formed only when asked for: a residual without damping needs alpha alone.
+// s1 comes from the element's shape table (the 5-point rule of the Assumed
+// treatment, the points and values of GaussRule5 and shapeValues(xi, l, 1)
+// exactly), so the result is bit-identical to computing it here.
+AxialProjection projectAxialStrain(const Section &sec, double l, const ShapeTable &shapes, const Vec8 &e,
+                                   const Vec8 *edot, bool gradients)
 {
   AxialProjection a;
   if (sec.axialIntegration != AxialIntegration::Assumed) return a;
@@ -186,22 +192,21 @@ AxialProjection projectAxialStrain(const Section &sec, double l, const Vec8 &e, 
   a.n = kAssumedTerms;
   static const GaussRule5 rule;
   const double *xi = rule.xi, *w = rule.w;
-  for (int j = 0; j < a.n; ++j) a.grad[j].setZero(), a.gradDot[j].setZero();
+  if (gradients)
+    for (int j = 0; j < a.n; ++j) a.grad[j].setZero(), a.gradDot[j].setZero();
   for (int p = 0; p < kGaussPoints; ++p) {
-    const Eigen::Vector4d s1 = shapeValues(xi[p], l, 1);
+    const Eigen::Vector4d &s1 = shapes.s1[p];
     const Vec2 r1 = slopeAt(s1, e);
     const double eps = 0.5 * (r1.squaredNorm() - 1.0);
-    const Vec8 dEps = expand(s1, r1);
     Vec2 r1d = Vec2::Zero();
     if (edot) r1d = slopeAt(s1, *edot);
     for (int j = 0; j < a.n; ++j) {
       const double wp = w[p] * legendre01(j, xi[p]);
       a.alpha[j] += wp * eps;
-      a.grad[j] += wp * dEps;
-      if (edot) {
-        a.alphaDot[j] += wp * r1.dot(r1d);
-        a.gradDot[j] += wp * expand(s1, r1d);
-      }
+      if (edot) a.alphaDot[j] += wp * r1.dot(r1d);
+      if (!gradients) continue;
+      a.grad[j] += wp * expand(s1, r1);
+      if (edot) a.gradDot[j] += wp * expand(s1, r1d);
     }
   }
   return a;
@@ -293,7 +298,7 @@ double curvature(const Vec8 &e, double xi, double l)
 double strainEnergy(const Section &sec, double l, const Vec8 &e)
 {
   const QuadRule &g = quadRule(sec.axialIntegration);
-  const AxialProjection proj = projectAxialStrain(sec, l, e, nullptr);
+  const AxialProjection proj = projectAxialStrain(sec, l, shapeTable(g, l), e, nullptr, false);
   double U = 0;
   for (int p = 0; p < g.size; ++p) {
     const QuadPoint &q = g.points[p];
@@ -308,7 +313,7 @@ void internalForce(const Section &sec, double l, const Vec8 &e, Vec8 &f, Mat8 *K
 {
   const QuadRule &g = quadRule(sec.axialIntegration);
   const ShapeTable &shapes = shapeTable(g, l);
-  const AxialProjection proj = projectAxialStrain(sec, l, e, nullptr);
+  const AxialProjection proj = projectAxialStrain(sec, l, shapes, e, nullptr, Kt != nullptr);
   const double EAproj = (1.0 - proj.gamma) * sec.EA; // EA of the projected strain (0 unless Assumed)
   Vec8 fl = Vec8::Zero(); // local accumulator: f may alias e
   // With a = EA eps - 2 EI K^2 / J2 and b = EI K / J2 (dK = (dc - 2 K dEps) / J2),
@@ -363,7 +368,7 @@ double dampingForce(const Section &sec, double l, const Vec8 &e, const Vec8 &edo
   // The axial strain rate on the points of the axial strain, so that D stays etaA K_axial.
   const QuadRule &g = quadRule(sec.axialIntegration);
   const ShapeTable &shapes = shapeTable(g, l);
-  const AxialProjection proj = projectAxialStrain(sec, l, e, &edot);
+  const AxialProjection proj = projectAxialStrain(sec, l, shapes, e, &edot, true);
   const double cproj = (1.0 - proj.gamma) * sec.EA * sec.etaA * l; // projected strain rate (Assumed)
   Vec8 fl = Vec8::Zero(); // local accumulator: fd may alias e or edot
   double power = 0;
@@ -433,7 +438,7 @@ void internalAndDampingForce(const Section &sec, double l, const Vec8 &e, const 
   // in those two functions, so the results are bit-identical to calling them.
   const QuadRule &g = quadRule(sec.axialIntegration);
   const ShapeTable &shapes = shapeTable(g, l);
-  const AxialProjection proj = projectAxialStrain(sec, l, e, &edot);
+  const AxialProjection proj = projectAxialStrain(sec, l, shapes, e, &edot, true);
   const double EAproj = (1.0 - proj.gamma) * sec.EA;
   const double cproj = (1.0 - proj.gamma) * sec.EA * sec.etaA * l;
   Vec8 fl = Vec8::Zero(), fdl = Vec8::Zero(); // local accumulators: f, fd may alias e or edot

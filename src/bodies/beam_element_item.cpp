@@ -27,6 +27,20 @@ void BeamElementItem::evaluate(const AssemblyContext &ctx, const ItemValues &in,
   const ancf::Section &sec = beam_->section();
   const double l = beam_->elementLength();
   ancf::Vec8 f;
+  if (!ctx.residualWanted && J && ctx.kin.cQ == 0.0) {
+    // Only a mass or damping Jacobian (the eigen-analysis' B and D passes):
+    // no internal force. The same operations on J as the general path below.
+    Eigen::Map<Eigen::Matrix<double, 8, 8, Eigen::RowMajor>> Jm(J);
+    Jm = ctx.kin.cA * (*mass_);
+    if (sec.damped() && ctx.kin.cV != 0.0) {
+      const Eigen::Map<const ancf::Vec8> v(in.v);
+      ancf::Vec8 fd;
+      ancf::Mat8 Dv;
+      ancf::dampingForce(sec, l, q, v, fd, nullptr, &Dv);
+      Jm += ctx.kin.cV * Dv;
+    }
+    return;
+  }
   if (!J && sec.damped()) {
     // A residual of a damped element: both forces in one pass over the Gauss
     // points, bit-identical to internalForce + addDamping below.

@@ -110,15 +110,17 @@ PetscErrorCode Assembler::buildPattern()
   PetscCall(VecDuplicate(xLocal_, fLocal_.address()));
   PetscCall(VecScatterCreate(xTemplate_, is, xLocal_, nullptr, scatter_.address()));
   PetscCall(ISDestroy(&is));
+  // One rank (or a rank whose items touch only its own unknowns): the local
+  // vector is the owned part of x in the same order, and the scatters are
+  // copies that can be skipped (x and F are read and written in place).
+  inPlace_ = nloc == hi - lo && (nloc == 0 || (needed.front() == lo && needed.back() == hi - 1));
   qc_.assign(nloc, 0.0), vc_.assign(nloc, 0.0), ac_.assign(nloc, 0.0);
   firstOrder_.assign(nloc, 0);
   for (PetscInt g : model_.firstOrderCoordinates()) {
     const auto it = localOf.find(g);
     if (it != localOf.end()) firstOrder_[it->second] = 1;
   }
-  q_.assign(nloc, 0.0), v_.assign(nloc, 0.0), a_.assign(nloc, 0.0), x_.assign(nloc, 0.0);
   for (auto *b : {&bq_, &bv_, &ba_, &bl_, &br_}) b->assign(maxN, 0.0);
-  bJ_.assign(maxN * maxN, 0.0);
   PetscFunctionReturn(0);
 }
 
@@ -157,44 +159,55 @@ PetscErrorCode Assembler::setOffsets(Vec qc, Vec vc, Vec ac)
       continue;
     }
     const PetscScalar *arr;
-    PetscCall(VecScatterBegin(scatter_, src[k], xLocal_, INSERT_VALUES, SCATTER_FORWARD));
-    PetscCall(VecScatterEnd(scatter_, src[k], xLocal_, INSERT_VALUES, SCATTER_FORWARD));
-    PetscCall(VecGetArrayRead(xLocal_, &arr));
+    Vec local = inPlace_ ? src[k] : xLocal_.get();
+    if (!inPlace_) {
+      PetscCall(VecScatterBegin(scatter_, src[k], xLocal_, INSERT_VALUES, SCATTER_FORWARD));
+      PetscCall(VecScatterEnd(scatter_, src[k], xLocal_, INSERT_VALUES, SCATTER_FORWARD));
+    }
+    PetscCall(VecGetArrayRead(local, &arr));
     std::copy(arr, arr + dst[k]->size(), dst[k]->begin());
-    PetscCall(VecRestoreArrayRead(xLocal_, &arr));
+    PetscCall(VecRestoreArrayRead(local, &arr));
   }
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode Assembler::scatterAndMap(const AssemblyContext &ctx, Vec x)
+PetscErrorCode Assembler::beginLocal(const AssemblyContext &ctx, Vec x)
 {
-  const PetscScalar *xl;
   PetscFunctionBeginUser;
-  PetscCall(VecScatterBegin(scatter_, x, xLocal_, INSERT_VALUES, SCATTER_FORWARD));
-  PetscCall(VecScatterEnd(scatter_, x, xLocal_, INSERT_VALUES, SCATTER_FORWARD));
-  PetscCall(VecGetArrayRead(xLocal_, &xl));
-  const Kinematics &k = ctx.kin;
-  for (std::size_t i = 0; i < q_.size(); ++i) {
-    q_[i] = qc_[i] + k.cQ * xl[i];
-    v_[i] = vc_[i] + (firstOrder_[i] ? k.cZ : k.cV) * xl[i];
-    a_[i] = ac_[i] + k.cA * xl[i];
+  localSource_ = inPlace_ ? x : xLocal_.get();
+  if (!inPlace_) {
+    PetscCall(VecScatterBegin(scatter_, x, xLocal_, INSERT_VALUES, SCATTER_FORWARD));
+    PetscCall(VecScatterEnd(scatter_, x, xLocal_, INSERT_VALUES, SCATTER_FORWARD));
   }
-  // The multipliers are read as given; a plain copy, so that gather() needs
-  // no PETSc call per item (two per item were ~10 % of a residual at 1e5 elements).
-  std::copy(xl, xl + x_.size(), x_.begin());
-  PetscCall(VecRestoreArrayRead(xLocal_, &xl));
+  PetscCall(VecGetArrayRead(localSource_, &xl_));
+  kin_ = ctx.kin;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode Assembler::endLocal()
+{
+  PetscFunctionBeginUser;
+  PetscCall(VecRestoreArrayRead(localSource_, &xl_));
+  xl_ = nullptr;
+  localSource_ = nullptr;
   PetscFunctionReturn(0);
 }
 
 void Assembler::gather(std::size_t k, ItemValues &vals)
 {
+  // The affine map q = qc + cQ x, v = vc + cV x (cZ for first-order
+  // states), a = ac + cA x, entry by entry for this item's unknowns only
+  // (the same operations as a map of the whole local vector, without
+  // writing and re-reading four arrays of its size); multipliers as given.
   const int begin = itemStart_[k], n = itemStart_[k + 1] - begin, nc = itemCoords_[k];
+  const Kinematics &c = kin_;
   for (int i = 0; i < n; ++i) {
     const PetscInt li = itemLocal_[begin + i];
-    bq_[i] = q_[li];
-    bv_[i] = v_[li];
-    ba_[i] = a_[li];
-    bl_[i] = x_[li];
+    const double x = xl_[li];
+    bq_[i] = qc_[li] + c.cQ * x;
+    bv_[i] = vc_[li] + (firstOrder_[li] ? c.cZ : c.cV) * x;
+    ba_[i] = ac_[li] + c.cA * x;
+    bl_[i] = x;
   }
   vals.q = bq_.data();
   vals.v = bv_.data();
@@ -202,32 +215,41 @@ void Assembler::gather(std::size_t k, ItemValues &vals)
   vals.lambda = bl_.data() + nc;
 }
 
-PetscErrorCode Assembler::evaluate(const AssemblyContext &ctx, Vec x, Vec F, Mat J)
+PetscErrorCode Assembler::evaluate(const AssemblyContext &context, Vec x, Vec F, Mat J)
 {
+  AssemblyContext ctx = context;
+  ctx.residualWanted = F != nullptr;
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(logEvents().assembly, 0, 0, 0, 0));
-  PetscCall(scatterAndMap(ctx, x));
+  PetscCall(beginLocal(ctx, x));
+  // The residual accumulates in F itself when the local vector is x's own
+  // part (one rank), else in fLocal_, added into F by the reverse scatter.
+  Vec fTarget = F ? (inPlace_ ? F : fLocal_.get()) : nullptr;
   PetscScalar *fl = nullptr;
   if (F) {
-    PetscCall(VecSet(fLocal_, 0.0));
-    PetscCall(VecGetArray(fLocal_, &fl));
+    PetscCall(VecSet(fTarget, 0.0));
+    PetscCall(VecGetArray(fTarget, &fl));
   }
   ItemValues vals;
   for (std::size_t k = 0; k < items_.size(); ++k) {
     const int begin = itemStart_[k], n = itemStart_[k + 1] - begin;
     gather(k, vals);
     std::fill(br_.begin(), br_.begin() + n, 0.0);
-    if (J) std::fill(bJ_.begin(), bJ_.begin() + n * n, 0.0);
-    items_[k]->evaluate(ctx, vals, br_.data(), J ? bJ_.data() : nullptr);
+    // The item's Jacobian block goes straight into its slice of the COO values.
+    double *Jk = J ? cooV_.data() + cooStart_[k] : nullptr;
+    if (Jk) std::fill(Jk, Jk + n * n, 0.0);
+    items_[k]->evaluate(ctx, vals, br_.data(), Jk);
     if (fl)
       for (int i = 0; i < n; ++i) fl[itemLocal_[begin + i]] += br_[i];
-    if (J) std::copy(bJ_.begin(), bJ_.begin() + n * n, cooV_.begin() + cooStart_[k]);
   }
+  PetscCall(endLocal());
   if (F) {
-    PetscCall(VecRestoreArray(fLocal_, &fl));
-    PetscCall(VecSet(F, 0.0));
-    PetscCall(VecScatterBegin(scatter_, fLocal_, F, ADD_VALUES, SCATTER_REVERSE));
-    PetscCall(VecScatterEnd(scatter_, fLocal_, F, ADD_VALUES, SCATTER_REVERSE));
+    PetscCall(VecRestoreArray(fTarget, &fl));
+    if (!inPlace_) {
+      PetscCall(VecSet(F, 0.0));
+      PetscCall(VecScatterBegin(scatter_, fLocal_, F, ADD_VALUES, SCATTER_REVERSE));
+      PetscCall(VecScatterEnd(scatter_, fLocal_, F, ADD_VALUES, SCATTER_REVERSE));
+    }
   }
   if (J) PetscCall(MatSetValuesCOO(J, cooV_.data(), INSERT_VALUES));
   PetscCall(PetscLogEventEnd(logEvents().assembly, 0, 0, 0, 0));
@@ -237,7 +259,7 @@ PetscErrorCode Assembler::evaluate(const AssemblyContext &ctx, Vec x, Vec F, Mat
 PetscErrorCode Assembler::diagnostics(const AssemblyContext &ctx, Vec x, EnergyParts *energy, PetscReal *maxViolation)
 {
   PetscFunctionBeginUser;
-  PetscCall(scatterAndMap(ctx, x));
+  PetscCall(beginLocal(ctx, x));
   EnergyParts e;
   double viol = 0;
   ItemValues vals;
@@ -246,6 +268,7 @@ PetscErrorCode Assembler::diagnostics(const AssemblyContext &ctx, Vec x, EnergyP
     items_[k]->energy(ctx, vals, e);
     viol = std::max(viol, items_[k]->constraintViolation(ctx, vals));
   }
+  PetscCall(endLocal());
   double sums[6] = {e.kinetic, e.strain, e.potential, e.inputPower, e.roundoff, e.dissipation}, global[6];
   PetscCallMPI(MPI_Allreduce(sums, global, 6, MPI_DOUBLE, MPI_SUM, comm_));
   if (energy) {
@@ -265,7 +288,7 @@ PetscErrorCode Assembler::dampingForces(Vec q, Vec v, DampingForces *forces)
   AssemblyContext ctx;
   ctx.kin = {1.0, 0.0, 0.0};
   PetscCall(setOffsets(nullptr, v, nullptr));
-  PetscCall(scatterAndMap(ctx, q));
+  PetscCall(beginLocal(ctx, q));
   forces->items.clear(), forces->first.clear(), forces->f.clear();
   ItemValues vals;
   for (std::size_t k = 0; k < items_.size(); ++k) {
@@ -279,6 +302,7 @@ PetscErrorCode Assembler::dampingForces(Vec q, Vec v, DampingForces *forces)
       forces->f.resize(first);
     }
   }
+  PetscCall(endLocal());
   PetscFunctionReturn(0);
 }
 
@@ -289,7 +313,7 @@ PetscErrorCode Assembler::dampingWork(const DampingForces &forces, Vec dq, Petsc
   AssemblyContext ctx;
   ctx.kin = {1.0, 0.0, 0.0};
   PetscCall(setOffsets(nullptr, nullptr, nullptr));
-  PetscCall(scatterAndMap(ctx, dq));
+  PetscCall(beginLocal(ctx, dq));
   double local = 0;
   ItemValues vals;
   for (std::size_t i = 0; i < forces.items.size(); ++i) {
@@ -299,6 +323,7 @@ PetscErrorCode Assembler::dampingWork(const DampingForces &forces, Vec dq, Petsc
     for (int j = 0; j < itemCoords_[k]; ++j) itemWork += vals.q[j] * forces.f[forces.first[i] + j];
     local += itemWork;
   }
+  PetscCall(endLocal());
   PetscCallMPI(MPI_Allreduce(&local, work, 1, MPI_DOUBLE, MPI_SUM, comm_));
   PetscFunctionReturn(0);
 }
@@ -307,7 +332,7 @@ PetscErrorCode Assembler::characteristicScales(Vec x, PetscReal *mass, PetscReal
 {
   PetscFunctionBeginUser;
   AssemblyContext ctx;
-  PetscCall(scatterAndMap(ctx, x));
+  PetscCall(beginLocal(ctx, x));
   double sums[3] = {0, 0, 0}, global[3];
   int count = 0;
   ItemValues vals;
@@ -315,6 +340,7 @@ PetscErrorCode Assembler::characteristicScales(Vec x, PetscReal *mass, PetscReal
     gather(k, vals);
     items_[k]->scales(vals, sums[0], sums[1], count);
   }
+  PetscCall(endLocal());
   sums[2] = count;
   PetscCallMPI(MPI_Allreduce(sums, global, 3, MPI_DOUBLE, MPI_SUM, comm_));
   const double n = global[2] > 0 ? global[2] : 1.0;

@@ -95,6 +95,7 @@ PetscErrorCode BlockConvergence::test(PetscInt it, Vec x, Vec dx, Vec F, PetscRe
   // Increments below this are round-off: the coordinates' size times a
   // hundred machine epsilons.
   const double roundoff = 100 * std::numeric_limits<double>::epsilon() * std::sqrt(all[X2 + Bodies] + all[X2 + Slacks]);
+  roundoff_ = roundoff;
   bool allResiduals = true;
   lastHolder_ = -1;
   incrementAtRoundoff_ = true;
