@@ -298,11 +298,19 @@ double curvature(const Vec8 &e, double xi, double l)
 double strainEnergy(const Section &sec, double l, const Vec8 &e)
 {
   const QuadRule &g = quadRule(sec.axialIntegration);
-  const AxialProjection proj = projectAxialStrain(sec, l, shapeTable(g, l), e, nullptr, false);
+  const ShapeTable &shapes = shapeTable(g, l);
+  const AxialProjection proj = projectAxialStrain(sec, l, shapes, e, nullptr, false);
   double U = 0;
   for (int p = 0; p < g.size; ++p) {
     const QuadPoint &q = g.points[p];
-    const double eps = axialStrain(e, q.xi, l), K = curvature(e, q.xi, l);
+    // axialStrain(e, q.xi, l) and curvature(e, q.xi, l) with the tabulated
+    // shape derivatives (the same values, the same sums: bit-identical); the
+    // energy diagnostics evaluate this for every element after every step.
+    const Eigen::Vector4d &s1 = shapes.s1[p], &s2 = shapes.s2[p];
+    Vec2 r1 = Vec2::Zero(), r2 = Vec2::Zero();
+    for (int k = 0; k < 4; ++k) r1 += s1[k] * e.segment<2>(2 * k);
+    for (int k = 0; k < 4; ++k) r2 += s2[k] * e.segment<2>(2 * k);
+    const double eps = 0.5 * (r1.squaredNorm() - 1.0), K = cross(r1, r2) / r1.squaredNorm();
     U += q.w * (q.axial * proj.gamma * sec.EA * eps * eps + q.bending * sec.EI * K * K);
   }
   for (int j = 0; j < proj.n; ++j) U += (1.0 - proj.gamma) * sec.EA * proj.alpha[j] * proj.alpha[j];
