@@ -180,9 +180,10 @@ struct AxialProjection {
 // formed only when asked for: a residual without damping needs alpha alone.
 // s1 comes from the element's shape table (the 5-point rule of the Assumed
 // treatment, the points and values of GaussRule5 and shapeValues(xi, l, 1)
-// exactly), so the result is bit-identical to computing it here.
+// exactly), so the result is bit-identical to computing it here. slopes:
+// r' at the rule's points if the caller has them already (the same sums).
 AxialProjection projectAxialStrain(const Section &sec, double l, const ShapeTable &shapes, const Vec8 &e,
-                                   const Vec8 *edot, bool gradients)
+                                   const Vec8 *edot, bool gradients, const Vec2 *slopes = nullptr)
 {
   AxialProjection a;
   if (sec.axialIntegration != AxialIntegration::Assumed) return a;
@@ -196,7 +197,7 @@ AxialProjection projectAxialStrain(const Section &sec, double l, const ShapeTabl
     for (int j = 0; j < a.n; ++j) a.grad[j].setZero(), a.gradDot[j].setZero();
   for (int p = 0; p < kGaussPoints; ++p) {
     const Eigen::Vector4d &s1 = shapes.s1[p];
-    const Vec2 r1 = slopeAt(s1, e);
+    const Vec2 r1 = slopes ? slopes[p] : slopeAt(s1, e);
     const double eps = 0.5 * (r1.squaredNorm() - 1.0);
     Vec2 r1d = Vec2::Zero();
     if (edot) r1d = slopeAt(s1, *edot);
@@ -298,11 +299,19 @@ double curvature(const Vec8 &e, double xi, double l)
 double strainEnergy(const Section &sec, double l, const Vec8 &e)
 {
   const QuadRule &g = quadRule(sec.axialIntegration);
-  const AxialProjection proj = projectAxialStrain(sec, l, shapeTable(g, l), e, nullptr, false);
+  const ShapeTable &shapes = shapeTable(g, l);
+  const AxialProjection proj = projectAxialStrain(sec, l, shapes, e, nullptr, false);
   double U = 0;
   for (int p = 0; p < g.size; ++p) {
     const QuadPoint &q = g.points[p];
-    const double eps = axialStrain(e, q.xi, l), K = curvature(e, q.xi, l);
+    // axialStrain(e, q.xi, l) and curvature(e, q.xi, l) with the tabulated
+    // shape derivatives (the same values, the same sums: bit-identical); the
+    // energy diagnostics evaluate this for every element after every step.
+    const Eigen::Vector4d &s1 = shapes.s1[p], &s2 = shapes.s2[p];
+    Vec2 r1 = Vec2::Zero(), r2 = Vec2::Zero();
+    for (int k = 0; k < 4; ++k) r1 += s1[k] * e.segment<2>(2 * k);
+    for (int k = 0; k < 4; ++k) r2 += s2[k] * e.segment<2>(2 * k);
+    const double eps = 0.5 * (r1.squaredNorm() - 1.0), K = cross(r1, r2) / r1.squaredNorm();
     U += q.w * (q.axial * proj.gamma * sec.EA * eps * eps + q.bending * sec.EI * K * K);
   }
   for (int j = 0; j < proj.n; ++j) U += (1.0 - proj.gamma) * sec.EA * proj.alpha[j] * proj.alpha[j];
@@ -313,7 +322,19 @@ void internalForce(const Section &sec, double l, const Vec8 &e, Vec8 &f, Mat8 *K
 {
   const QuadRule &g = quadRule(sec.axialIntegration);
   const ShapeTable &shapes = shapeTable(g, l);
-  const AxialProjection proj = projectAxialStrain(sec, l, shapes, e, nullptr, Kt != nullptr);
+  // r' and r'' at every point, once: the assumed strain's projection (on the
+  // same 5 points when it applies) and the loop below both need them.
+  Vec2 slopes[kGaussPoints + kReducedAxialPoints], curvatures[kGaussPoints + kReducedAxialPoints];
+  for (int p = 0; p < g.size; ++p) {
+    Vec2 r1 = Vec2::Zero(), r2 = Vec2::Zero();
+    for (int k = 0; k < 4; ++k) {
+      r1 += shapes.s1[p][k] * e.segment<2>(2 * k);
+      r2 += shapes.s2[p][k] * e.segment<2>(2 * k);
+    }
+    slopes[p] = r1, curvatures[p] = r2;
+  }
+  const AxialProjection proj = projectAxialStrain(sec, l, shapes, e, nullptr, Kt != nullptr,
+                                                  sec.axialIntegration == AxialIntegration::Assumed ? slopes : nullptr);
   const double EAproj = (1.0 - proj.gamma) * sec.EA; // EA of the projected strain (0 unless Assumed)
   Vec8 fl = Vec8::Zero(); // local accumulator: f may alias e
   // With a = EA eps - 2 EI K^2 / J2 and b = EI K / J2 (dK = (dc - 2 K dEps) / J2),
@@ -331,11 +352,7 @@ void internalForce(const Section &sec, double l, const Vec8 &e, Vec8 &f, Mat8 *K
     const QuadPoint &q = g.points[p];
     const double EA = q.axial * proj.gamma * sec.EA, EI = q.bending * sec.EI; // this point's terms
     const Eigen::Vector4d &s1 = shapes.s1[p], &s2 = shapes.s2[p];
-    Vec2 r1 = Vec2::Zero(), r2 = Vec2::Zero();
-    for (int k = 0; k < 4; ++k) {
-      r1 += s1[k] * e.segment<2>(2 * k);
-      r2 += s2[k] * e.segment<2>(2 * k);
-    }
+    const Vec2 &r1 = slopes[p], &r2 = curvatures[p];
     const double wx = q.w * l; // dx weight
     const double J2 = r1.squaredNorm(), iJ2 = 1.0 / J2;
     const double eps = 0.5 * (J2 - 1.0);
