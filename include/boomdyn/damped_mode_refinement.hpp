@@ -18,9 +18,16 @@
 #include "boomdyn/local_block.hpp"
 #include "boomdyn/petsc_handle.hpp"
 
+#include <complex>
 #include <vector>
 
 namespace boomdyn {
+
+// z = T(l)^{-1} b for T(l) = K + l D + l^2 M with real p x p K, D, M (the
+// projected quadratic problem of the refinement): the solve of its Rayleigh
+// functional iteration. False when T(l) is singular to round-off.
+bool solveShifted(const Eigen::MatrixXd &K, const Eigen::MatrixXd &D, const Eigen::MatrixXd &M,
+                  std::complex<double> l, const Eigen::VectorXcd &b, Eigen::VectorXcd *z);
 
 struct DampedRefinementInfo {
   int iterations = 0;      // projections solved

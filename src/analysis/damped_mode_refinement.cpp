@@ -183,9 +183,10 @@ std::complex<double> rayleighFunctional(const Eigen::MatrixXd &K, const Eigen::M
   return std::abs(r1 - near) < std::abs(r2 - near) ? r1 : r2;
 }
 
-// z = T(l)^{-1} b for T(l) = K + l D + l^2 M (real symmetric p x p K, D, M):
-// Gaussian elimination with partial pivoting on the real and imaginary parts
-// kept apart (pivot by |re| + |im|). At p ~ 15-35 this is about twice as fast
+} // namespace
+
+// Gaussian elimination with partial pivoting on the real and imaginary
+// parts kept apart (pivot by |re| + |im|). At p ~ 15-35 this is about twice as fast
 // as Eigen's complex PartialPivLU (measured 8 against 12 us at p = 19, 20
 // against 37 us at p = 30), which calls hypot for every pivot candidate and
 // needs the complex copies of K, D, M. False when a pivot is zero or the
@@ -245,6 +246,9 @@ bool solveShifted(const Eigen::MatrixXd &K, const Eigen::MatrixXd &D, const Eige
   z->imag() = bi;
   return true;
 }
+
+namespace {
+
 
 // Rayleigh functional iteration on the projected quadratic problem from
 // pair (y, lambda): y <- T(lambda)^{-1} T'(lambda) y, lambda <- the root of
