@@ -26,6 +26,7 @@ public:
 private:
   std::shared_ptr<const Constraint> constraint_;
   PetscInt firstRow_;
+  mutable ConstraintEval eval_; // evaluate()'s work arrays, kept between calls
 };
 
 } // namespace boomdyn

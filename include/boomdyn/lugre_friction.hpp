@@ -78,6 +78,7 @@ private:
   PetscInt z_, normalRow_;
   FrictionSpec spec_;
   const PadContact *pad_ = nullptr;
+  mutable Eigen::VectorXd padFq_, padFv_; // the pad force's derivatives, arrays kept between residuals
 };
 
 } // namespace boomdyn

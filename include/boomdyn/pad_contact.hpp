@@ -62,6 +62,10 @@ public:
 private:
   std::shared_ptr<const SlidingJoint> joint_;
   PadSpec spec_;
+  // d_q and d_qq of the last evaluation, kept so that their arrays are not
+  // allocated per residual.
+  mutable Eigen::VectorXd dq_;
+  mutable Eigen::MatrixXd dqq_;
 };
 
 } // namespace boomdyn

@@ -42,6 +42,9 @@ public:
     std::vector<char> linear; // per point: its centerline is linear in q (no curvature term)
   };
   void geometry(const double *q, Geometry &g) const;
+  // The same into this path's own Geometry, valid until the next call (the
+  // residual's path: no arrays allocated per evaluation).
+  const Geometry &geometry(const double *q) const;
   // The segments' part of l_qq: sum_j d_jq^T (I - u_j u_j^T)/l_j d_jq.
   static Eigen::MatrixXd segmentHessian(const Geometry &g);
   // The segments' part of v^T l_qq v: sum_j |d_j'|^2_(projector), negated when `negate`
@@ -57,6 +60,16 @@ private:
   std::vector<CenterlineLocation> loc_;
   std::vector<int> offset_;
   int n_ = 0;
+  // Work arrays of geometry(), kept between calls so that a residual
+  // evaluation allocates nothing (one path per rope; not thread-safe, as
+  // the assembly is not threaded).
+  struct Scratch {
+    std::vector<CenterlineSample> samples;
+    std::vector<Eigen::MatrixXd> rq;
+    Eigen::RowVectorXd segmentGradient;
+    Geometry geometry;
+  };
+  mutable Scratch scratch_;
 };
 
 } // namespace boomdyn

@@ -74,6 +74,9 @@ private:
   PetscInt slack_;
   CenterlineLocation trackLoc_, sliderLoc_;
   bool normalRow_;
+  // Both rows for normalGap() and the one-row evaluate(), kept between
+  // calls so that their arrays are not allocated per residual.
+  mutable ConstraintEval scratch_;
 };
 
 } // namespace boomdyn

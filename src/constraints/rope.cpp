@@ -17,8 +17,7 @@ double Rope::spannedLength(const double *q) const { return path_.length(q); }
 void Rope::evaluate(double, const double *q, const double *v, const double *w, ConstraintEval &out) const
 {
   const int n = path_.numCoordinates();
-  RopePath::Geometry g;
-  path_.geometry(q, g);
+  const RopePath::Geometry &g = path_.geometry(q);
   double C = length_;
   for (double lj : g.segment) C -= lj;
   out.C.setConstant(1, C);

@@ -35,32 +35,43 @@ double RopePath::length(const double *q) const
 
 void RopePath::geometry(const double *q, Geometry &g) const
 {
+  // Every array is reused from the previous call (same sizes, no heap
+  // traffic per residual); the arithmetic is that of a fresh Geometry.
   const std::size_t N = points_.size();
-  std::vector<CenterlineSample> s(N);
-  std::vector<Eigen::MatrixXd> rq(N, Eigen::MatrixXd::Zero(2, n_)); // d r_k / dq
+  std::vector<CenterlineSample> &s = scratch_.samples;
+  std::vector<Eigen::MatrixXd> &rq = scratch_.rq; // d r_k / dq
+  s.resize(N), rq.resize(N);
   for (std::size_t k = 0; k < N; ++k) {
     points_[k].body->sample(loc_[k], points_[k].s, q + offset_[k], s[k]);
+    rq[k].setZero(2, n_);
     rq[k].block(0, offset_[k], 2, loc_[k].count) = s[k].r_q[0].leftCols(loc_[k].count);
   }
-  g.segment.clear(), g.dq.clear(), g.projector.clear();
+  g.segment.resize(N - 1), g.dq.resize(N - 1), g.projector.resize(N - 1);
   g.length = 0;
-  g.lq = Eigen::RowVectorXd::Zero(n_);
+  g.lq.setZero(n_);
   g.dldr.assign(N, Vec2::Zero());
   g.linear.clear();
   for (const CenterlineSample &p : s) g.linear.push_back(p.linear);
+  Eigen::RowVectorXd &segmentGradient = scratch_.segmentGradient;
   for (std::size_t j = 0; j + 1 < N; ++j) {
     // Segment d = r_j - r_{j+1}: l_j = |d|, dl_j/dq = u^T d_q, d2 l_j/dq2 = d_q^T (I - u u^T)/l_j d_q.
     const Vec2 d = s[j].r[0] - s[j + 1].r[0];
     const double lj = d.norm();
     const Vec2 u = d / lj;
-    g.dq.push_back(rq[j] - rq[j + 1]);
-    g.segment.push_back(lj);
-    g.projector.push_back((Eigen::Matrix2d::Identity() - u * u.transpose()) / lj);
+    g.dq[j] = rq[j] - rq[j + 1];
+    g.segment[j] = lj;
+    g.projector[j] = (Eigen::Matrix2d::Identity() - u * u.transpose()) / lj;
     g.length += lj;
-    const Eigen::RowVectorXd segmentGradient = u.transpose() * g.dq.back(); // then added, as C_q always was
+    segmentGradient.noalias() = u.transpose() * g.dq[j]; // then added, as C_q always was
     g.lq += segmentGradient;
     g.dldr[j] += u, g.dldr[j + 1] -= u;
   }
+}
+
+const RopePath::Geometry &RopePath::geometry(const double *q) const
+{
+  geometry(q, scratch_.geometry);
+  return scratch_.geometry;
 }
 
 Eigen::MatrixXd RopePath::segmentHessian(const Geometry &g)
@@ -94,8 +105,7 @@ void RopePath::addCurvature(const double *q, const Geometry &g, double w, Eigen:
 
 double RopePath::evaluate(const double *q, Eigen::RowVectorXd &lq, double w, Eigen::MatrixXd *H) const
 {
-  Geometry g;
-  geometry(q, g);
+  const Geometry &g = geometry(q);
   lq = g.lq;
   if (H) {
     *H += w * segmentHessian(g);

@@ -70,18 +70,27 @@ void SlidingJoint::evaluate(double, const double *q, const double *v, const doub
     evaluateRows(q, v, w, out);
     return;
   }
+  // Both rows into the joint's own work arrays, then row d (out keeps its
+  // one-row sizes between calls: no heap traffic per residual).
   const double w2[2] = {w ? w[0] : 0.0, 0.0};
-  evaluateRows(q, v, w ? w2 : nullptr, out);
-  const Eigen::Index n = out.Cq.cols();
-  out.C.conservativeResize(1);
-  out.Cq.conservativeResize(1, n);
-  if (v) out.gamma.conservativeResize(1);
+  ConstraintEval &rows = scratch_;
+  evaluateRows(q, v, w ? w2 : nullptr, rows);
+  const Eigen::Index n = rows.Cq.cols();
+  out.C.resize(1);
+  out.C[0] = rows.C[0];
+  out.Cq.resize(1, n);
+  out.Cq.row(0) = rows.Cq.row(0);
+  if (v) {
+    out.gamma.resize(1);
+    out.gamma[0] = rows.gamma[0];
+  }
+  if (w) out.H = rows.H;
 }
 
 void SlidingJoint::normalGap(const double *q, double &d, Eigen::VectorXd &dq, Eigen::MatrixXd &dqq) const
 {
   const double w[2] = {0.0, 1.0};
-  ConstraintEval ev;
+  ConstraintEval &ev = scratch_;
   evaluateRows(q, nullptr, w, ev);
   d = -ev.C[1];
   dq = -ev.Cq.row(1).transpose();
@@ -90,7 +99,7 @@ void SlidingJoint::normalGap(const double *q, double &d, Eigen::VectorXd &dq, Ei
 
 void SlidingJoint::normalGap(const double *q, double &d, Eigen::VectorXd &dq) const
 {
-  ConstraintEval ev;
+  ConstraintEval &ev = scratch_;
   evaluateRows(q, nullptr, nullptr, ev);
   d = -ev.C[1];
   dq = -ev.Cq.row(1).transpose();

@@ -12,6 +12,7 @@
 #include "boomdyn/physics_type.hpp"
 #include "boomdyn/sliding_joint.hpp"
 
+#include <array>
 #include <sstream>
 
 namespace boomdyn {
@@ -173,18 +174,16 @@ PadWatch padWatch(const SlidingJoint &joint)
 }
 
 // The joint's coordinates (coordinates() order) picked from the watched values.
-std::vector<double> padLocal(const SlidingJoint &joint, const PadWatch &w, const double *x)
+void padLocal(const SlidingJoint &joint, const PadWatch &w, const double *x, std::vector<double> &out)
 {
-  std::vector<PetscInt> dofs;
-  joint.coordinates(dofs);
-  std::vector<double> out(dofs.size());
+  const CenterlineLocation &tl0 = joint.trackLocation(), &sl0 = joint.sliderLocation();
+  out.resize(static_cast<std::size_t>(tl0.count + sl0.count + 1)); // coordinates().size()
   const CenterlineLocation &tl = joint.trackLocation();
   for (int i = 0; i < tl.count; ++i) out[i] = x[w.trackOffset + tl.dofs[i] - joint.track().firstCoordinate()];
   const CenterlineLocation &sl = joint.sliderLocation();
   for (int i = 0; i < sl.count; ++i)
     out[tl.count + i] = x[w.sliderOffset + sl.dofs[i] - joint.slider().firstCoordinate()];
   out.back() = x[w.watched.size() - 1];
-  return out;
 }
 
 // The last pad state computed and what it was computed from.
@@ -193,6 +192,7 @@ struct PadStateMemo {
   std::vector<double> q, v;
   CenterlineLocation track, slider;
   PadState state;
+  std::vector<double> ql, vl; // work arrays of the lookup, kept between steps
 };
 
 bool sameLocation(const CenterlineLocation &a, const CenterlineLocation &b)
@@ -212,12 +212,13 @@ void addPadOutputs(std::shared_ptr<SlidingJoint> joint, const PadContact *pad, M
   // (q, v) every step: the gap's derivatives are computed once per state.
   auto memo = std::make_shared<PadStateMemo>();
   auto state = [joint, pad, w, memo](const double *q, const double *v) {
-    std::vector<double> ql = padLocal(*joint, w, q), vl = padLocal(*joint, w, v);
+    std::vector<double> &ql = memo->ql, &vl = memo->vl;
+    padLocal(*joint, w, q, ql), padLocal(*joint, w, v, vl);
     if (memo->valid && memo->q == ql && memo->v == vl && sameLocation(memo->track, joint->trackLocation()) &&
         sameLocation(memo->slider, joint->sliderLocation()))
       return memo->state;
     memo->state = pad->state(ql.data(), vl.data());
-    memo->q = std::move(ql), memo->v = std::move(vl);
+    memo->q.swap(ql), memo->v.swap(vl);
     memo->track = joint->trackLocation(), memo->slider = joint->sliderLocation();
     memo->valid = true;
     return memo->state;
@@ -289,13 +290,15 @@ void addJointResultants(std::shared_ptr<SlidingJoint> joint, const ConstraintIte
     b.addOutputChannel(OutputChannel::ofMultiplier("joint_resultants", name, "normal_force", "N",
                                                    item.firstRow() + 1 - b.numCoordinates(), 1.0));
   const PadWatch w = padWatch(*joint);
-  if (pad)
+  if (pad) {
+    auto local = std::make_shared<std::array<std::vector<double>, 2>>(); // q, v picked: kept between steps
     b.addOutputChannel(OutputChannel::ofState("joint_resultants", name, "normal_force", "N", w.watched,
-                                              [joint, pad, w](const double *q, const double *v) {
-                                                const std::vector<double> ql = padLocal(*joint, w, q),
-                                                                          vl = padLocal(*joint, w, v);
+                                              [joint, pad, w, local](const double *q, const double *v) {
+                                                std::vector<double> &ql = (*local)[0], &vl = (*local)[1];
+                                                padLocal(*joint, w, q, ql), padLocal(*joint, w, v, vl);
                                                 return pad->state(ql.data(), vl.data()).force;
                                               }));
+  }
   const char *names[3] = {"N", "M", "Q"};
   const char *units[3] = {"N", "N m", "N"};
   const Resultant kinds[3] = {Resultant::Axial, Resultant::Moment, Resultant::Shear};

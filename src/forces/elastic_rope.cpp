@@ -12,9 +12,9 @@ ElasticRope::ElasticRope(std::string name, RopePath path, double EA, double rest
 ElasticRope::State ElasticRope::state(double t, const double *q, const double *v) const
 {
   State st;
-  Eigen::RowVectorXd lq;
-  st.length = path_.evaluate(q, lq);
-  st.rate = lq.dot(Eigen::Map<const Eigen::VectorXd>(v, path_.numCoordinates()));
+  const RopePath::Geometry &g = path_.geometry(q); // l and l_q, no arrays allocated
+  st.length = g.length;
+  st.rate = g.lq.dot(Eigen::Map<const Eigen::VectorXd>(v, path_.numCoordinates()));
   st.restLength = restLength(t);
   st.payout = payout_.value(t);
   st.payoutRate = payout_.rate(t);
@@ -34,10 +34,17 @@ ElasticRope::State ElasticRope::state(double t, const double *q, const double *v
 void ElasticRope::evaluate(const AssemblyContext &ctx, const ItemValues &in, double *residual, double *J) const
 {
   const int n = path_.numCoordinates();
-  Eigen::RowVectorXd lq;
-  Eigen::MatrixXd lqq; // the path's Hessian: only for the tangent
-  if (J) lqq.setZero(n, n);
-  const double l = J ? path_.evaluate(in.q, lq, 1.0, &lqq) : path_.evaluate(in.q, lq);
+  // l and l_q from the path's own Geometry (no arrays allocated per
+  // residual); the Hessian only for the tangent.
+  const RopePath::Geometry &g = path_.geometry(in.q);
+  const Eigen::RowVectorXd &lq = g.lq;
+  const double l = g.length;
+  Eigen::MatrixXd lqq;
+  if (J) {
+    lqq.setZero(n, n);
+    lqq += 1.0 * RopePath::segmentHessian(g);
+    path_.addCurvature(in.q, g, 1.0, lqq);
+  }
   const Eigen::Map<const Eigen::VectorXd> v(in.v, n);
   const double L0 = restLength(ctx.t), k = EA_ / L0;
   const double rate = lq.dot(v), f = k * (l - L0) + c_ * (rate - payout_.rate(ctx.t));

@@ -115,7 +115,7 @@ void LuGreFriction::evaluate(const AssemblyContext &ctx, const ItemValues &in, d
   AD lambda;
   if (pad_) { // the pad force f(q, v) over the joint's coordinates (0 .. is)
     double fp;
-    Eigen::VectorXd fq, fv;
+    Eigen::VectorXd &fq = padFq_, &fv = padFv_;
     pad_->force(in.q, in.v, fp, fq, fv);
     lambda = constant(fp);
     for (int m = 0; m <= is; ++m) lambda.derivatives()[m] += k.cQ * fq[m] + k.cV * fv[m];

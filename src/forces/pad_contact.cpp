@@ -12,7 +12,7 @@ PadContact::PadContact(std::shared_ptr<const SlidingJoint> joint, const PadSpec 
 PadState PadContact::state(const double *q, const double *v) const
 {
   double d;
-  Eigen::VectorXd dq;
+  Eigen::VectorXd &dq = dq_;
   joint_->normalGap(q, d, dq);
   PadState s;
   s.gap = d;
@@ -28,8 +28,8 @@ PadState PadContact::state(const double *q, const double *v) const
 void PadContact::force(const double *q, const double *v, double &f, Eigen::VectorXd &fq, Eigen::VectorXd &fv) const
 {
   double d;
-  Eigen::VectorXd dq;
-  Eigen::MatrixXd dqq;
+  Eigen::VectorXd &dq = dq_;
+  Eigen::MatrixXd &dqq = dqq_;
   joint_->normalGap(q, d, dq, dqq);
   const Eigen::Index n = dq.size();
   const int side = sideOf(d, spec_.clearance);
@@ -50,8 +50,10 @@ void PadContact::evaluate(const AssemblyContext &ctx, const ItemValues &in, doub
   // The mass pencil of an eigen-analysis: a pad has no inertia.
   if (k.cQ == 0 && k.cV == 0 && !ctx.accelerationLevel) return;
   double d;
-  Eigen::VectorXd dq;
-  Eigen::MatrixXd dqq; // the Hessian: only for the tangent
+  // The pad's own work arrays (no heap traffic per residual); the Hessian
+  // only for the tangent.
+  Eigen::VectorXd &dq = dq_;
+  Eigen::MatrixXd &dqq = dqq_;
   if (J) joint_->normalGap(in.q, d, dq, dqq);
   else joint_->normalGap(in.q, d, dq);
   const int side = sideOf(d, spec_.clearance);
@@ -82,7 +84,7 @@ void PadContact::evaluate(const AssemblyContext &ctx, const ItemValues &in, doub
 void PadContact::energy(const AssemblyContext &, const ItemValues &in, EnergyParts &parts) const
 {
   double d;
-  Eigen::VectorXd dq;
+  Eigen::VectorXd &dq = dq_;
   joint_->normalGap(in.q, d, dq);
   const int side = sideOf(d, spec_.clearance);
   if (side == 0) return;

@@ -18,15 +18,18 @@ void ConstraintItem::multiplierRows(std::vector<PetscInt> &rows) const
 void ConstraintItem::evaluate(const AssemblyContext &ctx, const ItemValues &in, double *residual, double *J) const
 {
   if (!ctx.constraintBlocks) return; // B pencil: the item contributes explicit zeros only
-  // Only the count is needed here: one buffer for all calls instead of a
-  // heap allocation per constraint and residual.
-  thread_local std::vector<PetscInt> dofs;
-  constraint_->coordinates(dofs);
-  const int nc = static_cast<int>(dofs.size()), m = constraint_->numRows(), n = nc + m;
+  const int m = constraint_->numRows();
   const Eigen::Map<const Eigen::VectorXd> lam(in.lambda, m);
   const bool needHessian = J && ctx.kin.cQ != 0.0;
-  ConstraintEval ev;
+  // This item's own ConstraintEval, reused: its arrays keep their sizes
+  // from one residual to the next, so evaluating allocates nothing. Every
+  // constraint assigns C and C_q, and gamma, Ct and H whenever it is asked
+  // for them (v, w non-null), which is when they are read below.
+  ConstraintEval &ev = eval_;
   constraint_->evaluate(ctx.t, in.q, ctx.accelerationLevel ? in.v : nullptr, needHessian ? in.lambda : nullptr, ev);
+  // The coordinate count from C_q (columns over coordinates()), without
+  // building the coordinate list.
+  const int nc = static_cast<int>(ev.Cq.cols()), n = nc + m;
   const double sigma = ctx.sigma;
   Eigen::Map<Eigen::VectorXd> r(residual, n);
   r.head(nc) += sigma * ev.Cq.transpose() * lam;
