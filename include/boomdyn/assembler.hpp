@@ -54,6 +54,10 @@ public:
   };
   PetscErrorCode dampingForces(Vec q, Vec v, DampingForces *forces);
   PetscErrorCode dampingWork(const DampingForces &forces, Vec dq, PetscReal *work);
+  // The work of two sets of damping forces (the same items, as two states
+  // of one model give) along one increment in one pass: work[k] is
+  // bit-identical to dampingWork(*forces[k], dq, &work[k]).
+  PetscErrorCode dampingWork(const DampingForces *const forces[2], Vec dq, PetscReal work[2]);
   // Mean diagonal of mass and stiffness over position coordinates at q = x.
   PetscErrorCode characteristicScales(Vec x, PetscReal *mass, PetscReal *stiffness);
 

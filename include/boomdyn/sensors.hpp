@@ -42,7 +42,18 @@ public:
   PetscErrorCode readEventCoordinates(Vec q, Vec v, std::vector<double> &qs, std::vector<double> &vs);
 
 private:
+  // scatterValues(sc, src, dst, out), or on one rank the same values read
+  // straight from src at the scatter's indices (a PETSc scatter per read was
+  // a visible part of the per-step output).
+  PetscErrorCode pick(VecScatter sc, Vec src, Vec dst, std::vector<double> &out) const;
+  // scatterToRankZero, remembering the indices for pick() on one rank.
+  PetscErrorCode makeScatter(Vec layout, const std::vector<PetscInt> &idx, PetscHandle<VecScatter> &sc,
+                             PetscHandle<Vec> &values);
+
   const Model &model_;
+  bool serial_ = false;                                                 // one rank: pick() reads directly
+  std::vector<std::pair<VecScatter, std::vector<PetscInt>>> indices_;   // per scatter (one rank only)
+  std::vector<double> qs_, vs_;                                         // readOutputs' work arrays
   std::vector<CenterlineLocation> locations_;
   PetscHandle<VecScatter> scatter_, slackScatter_, lambdaScatter_, frameScatter_, frictionScatter_, normalScatter_,
       channelScatter_, eventScatter_, padScatter_;

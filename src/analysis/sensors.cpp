@@ -23,11 +23,41 @@ static PetscErrorCode scatterToRankZero(Vec layout, int rank, const std::vector<
   PetscFunctionReturn(0);
 }
 
+PetscErrorCode SensorProbe::makeScatter(Vec layout, const std::vector<PetscInt> &idx, PetscHandle<VecScatter> &sc,
+                                        PetscHandle<Vec> &values)
+{
+  PetscFunctionBeginUser;
+  PetscCall(scatterToRankZero(layout, rank_, idx, sc.address(), values.address()));
+  // (An index list with a negative entry, which a scatter skips, keeps the scatter.)
+  if (serial_ && std::all_of(idx.begin(), idx.end(), [](PetscInt i) { return i >= 0; }))
+    indices_.emplace_back(sc.get(), idx);
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SensorProbe::pick(VecScatter sc, Vec src, Vec dst, std::vector<double> &out) const
+{
+  PetscFunctionBeginUser;
+  const std::vector<PetscInt> *idx = nullptr;
+  for (const auto &entry : indices_)
+    if (entry.first == sc) idx = &entry.second;
+  if (!idx) {
+    PetscCall(scatterValues(sc, src, dst, out));
+    PetscFunctionReturn(0);
+  }
+  // One rank: the local array is the whole vector, a global index a local one.
+  const PetscScalar *a;
+  PetscCall(VecGetArrayRead(src, &a));
+  out.resize(idx->size());
+  for (std::size_t k = 0; k < idx->size(); ++k) out[k] = a[(*idx)[k]];
+  PetscCall(VecRestoreArrayRead(src, &a));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode SensorProbe::readFrames(Vec q, std::vector<double> &deflections)
 {
   std::vector<double> vals;
   PetscFunctionBeginUser;
-  PetscCall(scatterValues(frameScatter_, q, frameValues_, vals));
+  PetscCall(pick(frameScatter_, q, frameValues_, vals));
   deflections.clear();
   if (rank_ != 0) PetscFunctionReturn(0);
   for (const Frame &f : frames_) {
@@ -52,14 +82,14 @@ PetscErrorCode SensorProbe::readFriction(Vec q, Vec v, Vec lambda, std::vector<d
 {
   std::vector<double> qs, vs, ln;
   PetscFunctionBeginUser;
-  PetscCall(scatterValues(frictionScatter_, q, frictionValues_, qs));
-  PetscCall(scatterValues(frictionScatter_, v, frictionValues_, vs));
-  PetscCall(scatterValues(normalScatter_, lambda, normalValues_, ln));
+  PetscCall(pick(frictionScatter_, q, frictionValues_, qs));
+  PetscCall(pick(frictionScatter_, v, frictionValues_, vs));
+  PetscCall(pick(normalScatter_, lambda, normalValues_, ln));
   values.clear();
   if (!padFrictions_.empty()) { // the normal force of a padded joint is the pad's f(q, v)
     std::vector<double> pq, pv;
-    PetscCall(scatterValues(padScatter_, q, padValues_, pq));
-    PetscCall(scatterValues(padScatter_, v, padValues_, pv));
+    PetscCall(pick(padScatter_, q, padValues_, pq));
+    PetscCall(pick(padScatter_, v, padValues_, pv));
     if (rank_ == 0)
       for (const PadFriction &p : padFrictions_) {
         const LuGreFriction &f = *model_.frictions()[p.friction];
@@ -69,11 +99,11 @@ PetscErrorCode SensorProbe::readFriction(Vec q, Vec v, Vec lambda, std::vector<d
         const Body &track = joint.track(), &slider = joint.slider();
         const CenterlineLocation &tl = joint.trackLocation(), &sl = joint.sliderLocation();
         std::vector<double> lq(dofs.size()), lv(dofs.size());
-        auto pick = [&](PetscInt at, std::size_t i) { lq[i] = pq[at], lv[i] = pv[at]; };
-        for (int i = 0; i < tl.count; ++i) pick(p.offset + tl.dofs[i] - track.firstCoordinate(), i);
+        auto copy = [&](PetscInt at, std::size_t i) { lq[i] = pq[at], lv[i] = pv[at]; };
+        for (int i = 0; i < tl.count; ++i) copy(p.offset + tl.dofs[i] - track.firstCoordinate(), i);
         const PetscInt sliderOffset = p.offset + track.numCoordinates();
-        for (int i = 0; i < sl.count; ++i) pick(sliderOffset + sl.dofs[i] - slider.firstCoordinate(), tl.count + i);
-        pick(sliderOffset + slider.numCoordinates(), dofs.size() - 1);
+        for (int i = 0; i < sl.count; ++i) copy(sliderOffset + sl.dofs[i] - slider.firstCoordinate(), tl.count + i);
+        copy(sliderOffset + slider.numCoordinates(), dofs.size() - 1);
         ln[p.friction] = f.pad()->state(lq.data(), lv.data()).force;
       }
   }
@@ -87,8 +117,8 @@ PetscErrorCode SensorProbe::readFriction(Vec q, Vec v, Vec lambda, std::vector<d
 PetscErrorCode SensorProbe::readJoints(Vec q, Vec lambda, std::vector<double> &slacks, std::vector<double> &multipliers)
 {
   PetscFunctionBeginUser;
-  PetscCall(scatterValues(slackScatter_, q, slacks_, slacks));
-  PetscCall(scatterValues(lambdaScatter_, lambda, multipliers_, multipliers));
+  PetscCall(pick(slackScatter_, q, slacks_, slacks));
+  PetscCall(pick(lambdaScatter_, lambda, multipliers_, multipliers));
   PetscFunctionReturn(0);
 }
 
@@ -98,6 +128,10 @@ PetscErrorCode SensorProbe::setUp(Vec layout)
   PetscFunctionBeginUser;
   PetscCall(PetscObjectGetComm((PetscObject)layout, &comm));
   PetscCallMPI(MPI_Comm_rank(comm, &rank_));
+  PetscMPIInt size;
+  PetscCallMPI(MPI_Comm_size(comm, &size));
+  serial_ = size == 1;
+  indices_.clear();
   std::vector<PetscInt> idx;
   for (const Sensor &s : model_.sensors()) {
     locations_.push_back(s.body->locate(s.s));
@@ -105,12 +139,12 @@ PetscErrorCode SensorProbe::setUp(Vec layout)
     idx.insert(idx.end(), loc.dofs.begin(), loc.dofs.begin() + loc.count);
   }
   // Rank 0 receives every sensor's coordinates; the other ranks ask for none.
-  PetscCall(scatterToRankZero(layout, rank_, idx, scatter_.address(), gathered_.address()));
+  PetscCall(makeScatter(layout, idx, scatter_, gathered_));
   std::vector<PetscInt> slack, rows;
   for (const auto &j : model_.slidingJoints()) slack.push_back(j->slackIndex());
   for (PetscInt r = 0; r < model_.numMultipliers(); ++r) rows.push_back(model_.numCoordinates() + r);
-  PetscCall(scatterToRankZero(layout, rank_, slack, slackScatter_.address(), slacks_.address()));
-  PetscCall(scatterToRankZero(layout, rank_, rows, lambdaScatter_.address(), multipliers_.address()));
+  PetscCall(makeScatter(layout, slack, slackScatter_, slacks_));
+  PetscCall(makeScatter(layout, rows, lambdaScatter_, multipliers_));
   // Frame sensors: the whole body (the axis point moves along it) and the joint's slack coordinate.
   std::vector<PetscInt> frameIdx;
   for (const FrameSensor &f : model_.frameSensors()) {
@@ -122,7 +156,7 @@ PetscErrorCode SensorProbe::setUp(Vec layout)
     for (PetscInt k = 0; k < body->numCoordinates(); ++k) frameIdx.push_back(body->firstCoordinate() + k);
     frameIdx.push_back(slack);
   }
-  PetscCall(scatterToRankZero(layout, rank_, frameIdx, frameScatter_.address(), frameValues_.address()));
+  PetscCall(makeScatter(layout, frameIdx, frameScatter_, frameValues_));
   std::vector<PetscInt> frictionIdx, normalIdx;
   std::vector<PetscInt> padIdx; // padded joints: track and slider whole, then s (the contact moves)
   for (std::size_t k = 0; k < model_.frictions().size(); ++k) {
@@ -138,9 +172,9 @@ PetscErrorCode SensorProbe::setUp(Vec layout)
     } else
       normalIdx.push_back(f->normalRow());
   }
-  PetscCall(scatterToRankZero(layout, rank_, padIdx, padScatter_.address(), padValues_.address()));
-  PetscCall(scatterToRankZero(layout, rank_, frictionIdx, frictionScatter_.address(), frictionValues_.address()));
-  PetscCall(scatterToRankZero(layout, rank_, normalIdx, normalScatter_.address(), normalValues_.address()));
+  PetscCall(makeScatter(layout, padIdx, padScatter_, padValues_));
+  PetscCall(makeScatter(layout, frictionIdx, frictionScatter_, frictionValues_));
+  PetscCall(makeScatter(layout, normalIdx, normalScatter_, normalValues_));
   // State output channels and event sources: their watched coordinates, one after the other.
   std::vector<PetscInt> channelIdx, eventIdx;
   std::vector<std::pair<const std::vector<PetscInt> *, std::size_t>> lists; // distinct watched lists, offsets
@@ -157,18 +191,18 @@ PetscErrorCode SensorProbe::setUp(Vec layout)
     channelIdx.insert(channelIdx.end(), ch.watched.begin(), ch.watched.end());
   }
   for (const EventSource &e : model_.eventSources()) eventIdx.insert(eventIdx.end(), e.watched.begin(), e.watched.end());
-  PetscCall(scatterToRankZero(layout, rank_, channelIdx, channelScatter_.address(), channelValues_.address()));
-  PetscCall(scatterToRankZero(layout, rank_, eventIdx, eventScatter_.address(), eventValues_.address()));
+  PetscCall(makeScatter(layout, channelIdx, channelScatter_, channelValues_));
+  PetscCall(makeScatter(layout, eventIdx, eventScatter_, eventValues_));
   PetscFunctionReturn(0);
 }
 
 PetscErrorCode SensorProbe::readOutputs(double t, Vec q, Vec v, const std::vector<double> &multipliers,
                                         std::vector<double> &outputs)
 {
-  std::vector<double> qs, vs;
+  std::vector<double> &qs = qs_, &vs = vs_;
   PetscFunctionBeginUser;
-  PetscCall(scatterValues(channelScatter_, q, channelValues_, qs));
-  PetscCall(scatterValues(channelScatter_, v, channelValues_, vs));
+  PetscCall(pick(channelScatter_, q, channelValues_, qs));
+  PetscCall(pick(channelScatter_, v, channelValues_, vs));
   outputs.clear();
   if (rank_ != 0) PetscFunctionReturn(0);
   std::size_t k = 0; // state channel
@@ -186,8 +220,8 @@ PetscErrorCode SensorProbe::readOutputs(double t, Vec q, Vec v, const std::vecto
 PetscErrorCode SensorProbe::readEventCoordinates(Vec q, Vec v, std::vector<double> &qs, std::vector<double> &vs)
 {
   PetscFunctionBeginUser;
-  PetscCall(scatterValues(eventScatter_, q, eventValues_, qs));
-  PetscCall(scatterValues(eventScatter_, v, eventValues_, vs));
+  PetscCall(pick(eventScatter_, q, eventValues_, qs));
+  PetscCall(pick(eventScatter_, v, eventValues_, vs));
   PetscFunctionReturn(0);
 }
 
@@ -196,17 +230,8 @@ PetscErrorCode SensorProbe::read(Vec q, Vec v, std::vector<SensorReading> &out)
   PetscFunctionBeginUser;
   out.assign(locations_.size(), SensorReading{});
   std::vector<double> qv[2];
-  Vec src[2] = {q, v};
-  for (int k = 0; k < 2; ++k) {
-    const PetscScalar *g;
-    PetscInt n;
-    PetscCall(VecScatterBegin(scatter_, src[k], gathered_, INSERT_VALUES, SCATTER_FORWARD));
-    PetscCall(VecScatterEnd(scatter_, src[k], gathered_, INSERT_VALUES, SCATTER_FORWARD));
-    PetscCall(VecGetLocalSize(gathered_, &n));
-    PetscCall(VecGetArrayRead(gathered_, &g));
-    qv[k].assign(g, g + n);
-    PetscCall(VecRestoreArrayRead(gathered_, &g));
-  }
+  PetscCall(pick(scatter_, q, gathered_, qv[0]));
+  PetscCall(pick(scatter_, v, gathered_, qv[1]));
   if (rank_ != 0) PetscFunctionReturn(0);
   std::size_t offset = 0;
   for (std::size_t i = 0; i < locations_.size(); ++i) {

@@ -306,6 +306,36 @@ PetscErrorCode Assembler::dampingForces(Vec q, Vec v, DampingForces *forces)
   PetscFunctionReturn(0);
 }
 
+PetscErrorCode Assembler::dampingWork(const DampingForces *const forces[2], Vec dq, PetscReal work[2])
+{
+  PetscFunctionBeginUser;
+  const DampingForces &a = *forces[0], &b = *forces[1];
+  if (a.items != b.items || a.first != b.first) { // not the same items: one pass each
+    PetscCall(dampingWork(a, dq, &work[0]));
+    PetscCall(dampingWork(b, dq, &work[1]));
+    PetscFunctionReturn(0);
+  }
+  AssemblyContext ctx;
+  ctx.kin = {1.0, 0.0, 0.0};
+  PetscCall(setOffsets(nullptr, nullptr, nullptr));
+  PetscCall(beginLocal(ctx, dq));
+  double local[2] = {0, 0};
+  ItemValues vals;
+  for (std::size_t i = 0; i < a.items.size(); ++i) {
+    const std::size_t k = a.items[i];
+    gather(k, vals);
+    double itemWork[2] = {0, 0}; // per item, then summed, as in the one-set pass
+    for (int j = 0; j < itemCoords_[k]; ++j) {
+      itemWork[0] += vals.q[j] * a.f[a.first[i] + j];
+      itemWork[1] += vals.q[j] * b.f[b.first[i] + j];
+    }
+    local[0] += itemWork[0], local[1] += itemWork[1];
+  }
+  PetscCall(endLocal());
+  PetscCallMPI(MPI_Allreduce(local, work, 2, MPI_DOUBLE, MPI_SUM, comm_));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode Assembler::dampingWork(const DampingForces &forces, Vec dq, PetscReal *work)
 {
   PetscFunctionBeginUser;

@@ -67,7 +67,7 @@ void ConstraintItem::energy(const AssemblyContext &ctx, const ItemValues &in, En
 
 double ConstraintItem::constraintViolation(const AssemblyContext &ctx, const ItemValues &in) const
 {
-  ConstraintEval ev;
+  ConstraintEval &ev = eval_; // the residual's work arrays (after every step: no allocation)
   constraint_->evaluate(ctx.t, in.q, nullptr, nullptr, ev);
   return ev.C.cwiseAbs().maxCoeff();
 }

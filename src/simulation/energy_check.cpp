@@ -47,12 +47,12 @@ PetscErrorCode EnergyCheck::afterStep(const RunState &s, std::string *failure)
   if (!s.dynamic) PetscFunctionReturn(0);
   double work = 0;
   if (damped_) {
-    PetscReal before, after;
+    PetscReal w[2]; // before, after
     PetscCall(VecWAXPY(dq_, -1.0, qPrevious_, s.q));
     PetscCall(assembler_.dampingForces(s.q, s.v, &forces_));
-    PetscCall(assembler_.dampingWork(forcesPrevious_, dq_, &before));
-    PetscCall(assembler_.dampingWork(forces_, dq_, &after));
-    work = 0.5 * (before + after);
+    const Assembler::DampingForces *const both[2] = {&forcesPrevious_, &forces_};
+    PetscCall(assembler_.dampingWork(both, dq_, w)); // one pass for both
+    work = 0.5 * (w[0] + w[1]);
     std::swap(forcesPrevious_, forces_);
     PetscCall(remember(s));
   }
