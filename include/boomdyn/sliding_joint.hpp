@@ -60,7 +60,11 @@ public:
   bool relocate(double s);
   static constexpr double relocationHysteresis = 1e-3; // of the element length
   // Puts the contact point on the element that holds s, unconditionally (restarts).
-  void setTrackLocation(double s) { trackLoc_ = track_->locate(s); }
+  void setTrackLocation(double s)
+  {
+    trackLoc_ = track_->locate(s);
+    rowsValid_ = false;
+  }
   // True when s lies in [0, track length].
   bool onTrack(double s) const { return s >= 0.0 && s <= track_->length(); }
 
@@ -77,6 +81,14 @@ private:
   // Both rows for normalGap() and the one-row evaluate(), kept between
   // calls so that their arrays are not allocated per residual.
   mutable ConstraintEval scratch_;
+  // C and C_q of both rows (no v, no w) at the last q asked for: a padded
+  // joint's constraint row and its pad ask for the same q in every residual
+  // and after every step (the same values, computed once).
+  const ConstraintEval &rowsAt(const double *q) const;
+  static constexpr int kMaxRowCoordinates = 17; // 8 + 8 + the slack coordinate
+  mutable ConstraintEval rows_;
+  mutable double rowsQ_[kMaxRowCoordinates] = {};
+  mutable bool rowsValid_ = false;
 };
 
 } // namespace boomdyn

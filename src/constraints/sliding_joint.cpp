@@ -3,6 +3,7 @@
 #include <Eigen/Dense>
 
 #include <algorithm>
+#include <cstring>
 
 namespace boomdyn {
 
@@ -61,6 +62,7 @@ bool SlidingJoint::relocate(double s)
   const CenterlineLocation loc = track_->locate(sc);
   if (loc.element == trackLoc_.element) return false;
   trackLoc_ = loc;
+  rowsValid_ = false;
   return true;
 }
 
@@ -73,8 +75,10 @@ void SlidingJoint::evaluate(double, const double *q, const double *v, const doub
   // Both rows into the joint's own work arrays, then row d (out keeps its
   // one-row sizes between calls: no heap traffic per residual).
   const double w2[2] = {w ? w[0] : 0.0, 0.0};
-  ConstraintEval &rows = scratch_;
-  evaluateRows(q, v, w ? w2 : nullptr, rows);
+  const ConstraintEval *both = &scratch_;
+  if (!v && !w) both = &rowsAt(q); // a residual: the pad asks for the same rows
+  else evaluateRows(q, v, w ? w2 : nullptr, scratch_);
+  const ConstraintEval &rows = *both;
   const Eigen::Index n = rows.Cq.cols();
   out.C.resize(1);
   out.C[0] = rows.C[0];
@@ -99,10 +103,20 @@ void SlidingJoint::normalGap(const double *q, double &d, Eigen::VectorXd &dq, Ei
 
 void SlidingJoint::normalGap(const double *q, double &d, Eigen::VectorXd &dq) const
 {
-  ConstraintEval &ev = scratch_;
-  evaluateRows(q, nullptr, nullptr, ev);
+  const ConstraintEval &ev = rowsAt(q);
   d = -ev.C[1];
   dq = -ev.Cq.row(1).transpose();
+}
+
+const ConstraintEval &SlidingJoint::rowsAt(const double *q) const
+{
+  const int n = trackLoc_.count + sliderLoc_.count + 1;
+  // Bitwise the same q (memcmp: -0 and +0 differ, a NaN never matches).
+  if (rowsValid_ && std::memcmp(q, rowsQ_, sizeof(double) * n) == 0) return rows_;
+  evaluateRows(q, nullptr, nullptr, rows_);
+  std::copy(q, q + n, rowsQ_);
+  rowsValid_ = true;
+  return rows_;
 }
 
 void SlidingJoint::evaluateRows(const double *q, const double *v, const double *w, ConstraintEval &out) const
