@@ -31,13 +31,13 @@ void BeamElementItem::inertiaAndForces(const double *a, const ancf::Vec8 &f, dou
   // general expression above (test BeamElementItem.KroneckerMassProductIsBitIdentical);
   // half the multiplications, and no call of Eigen's product kernel, on
   // every element of every residual.
+  // Both directions of a node at once (one SSE2 pair: x and y rows share m_ik).
   const ancf::Mat8 &M = *mass_;
-  for (int i = 0; i < 4; ++i)
-    for (int d = 0; d < 2; ++d) {
-      double s = 0;
-      for (int k = 0; k < 4; ++k) s += M(2 * i + d, 2 * k + d) * a[2 * k + d];
-      residual[2 * i + d] = (s + f[2 * i + d]) - loadFactor * gravity_[2 * i + d];
-    }
+  for (int i = 0; i < 4; ++i) {
+    Eigen::Vector2d s = Eigen::Vector2d::Zero();
+    for (int k = 0; k < 4; ++k) s += M(2 * i, 2 * k) * Eigen::Map<const Eigen::Vector2d>(a + 2 * k);
+    Eigen::Map<Eigen::Vector2d>(residual + 2 * i) = (s + f.segment<2>(2 * i)) - loadFactor * gravity_.segment<2>(2 * i);
+  }
 }
 
 std::string BeamElementItem::name() const { return beam_->name() + ".element" + std::to_string(element_); }
