@@ -22,6 +22,9 @@ public:
   bool physicalDamping() const override;
   bool dampingForce(const ItemValues &in, double *f) const override;
 
+  // residual = M a + f - loadFactor g (inertia, internal force f, gravity g).
+  void inertiaAndForces(const double *a, const ancf::Vec8 &f, double loadFactor, double *residual) const;
+
 private:
   // Kelvin-Voigt damping force into the residual, D (times cV) and dfd/dq (times cQ) into J.
   void addDamping(const AssemblyContext &ctx, const ItemValues &in, double *residual, double *J) const;
@@ -41,6 +44,7 @@ private:
   int element_;
   std::shared_ptr<const ancf::Mat8> mass_;
   ancf::Vec8 gravity_; // generalized gravity force of the element
+  bool kroneckerMass_ = true; // *mass_ is m ⊗ I2 (see inertiaAndForces)
 };
 
 } // namespace boomdyn

@@ -59,6 +59,22 @@ const QuadRule &quadRule(AxialIntegration axial)
   return axial == AxialIntegration::Reduced ? reduced : full;
 }
 
+// Orthonormal Legendre polynomials on [0, 1] (degree 0 and 1): the basis of the assumed axial strain.
+// The 5-point rule, computed once.
+struct GaussRule5 {
+  double xi[kGaussPoints], w[kGaussPoints];
+  GaussRule5() { gaussLegendre01(kGaussPoints, xi, w); }
+};
+
+inline double legendre01(int j, double xi) { return j == 0 ? 1.0 : std::sqrt(3.0) * (2.0 * xi - 1.0); }
+
+// w_p phi_j(xi_p) on the 5-point rule: the weights of the assumed strain's projection.
+double projectionWeight(int j, int p)
+{
+  static const GaussRule5 rule;
+  return rule.w[p] * legendre01(j, rule.xi[p]);
+}
+
 // s' and s'' of the shape functions at a rule's points for an element
 // length: the same values shapeValues() gives there, computed once per beam
 // instead of at every evaluation. A few lengths are kept (the beams of a
@@ -68,7 +84,12 @@ struct ShapeTable {
   const QuadRule *rule = nullptr;
   double l = 0;
   Eigen::Vector4d s1[kGaussPoints + kReducedAxialPoints], s2[kGaussPoints + kReducedAxialPoints];
+  // phi_1(xi) at the rule's points, and w_p phi_j(xi_p) on the 5-point rule
+  // of the assumed strain's projection (legendre01 below; the same products).
+  double legendre1[kGaussPoints + kReducedAxialPoints];
+  double projectionWeight[kAssumedTerms][kGaussPoints];
 };
+
 
 const ShapeTable &shapeTable(const QuadRule &g, double l)
 {
@@ -84,7 +105,10 @@ const ShapeTable &shapeTable(const QuadRule &g, double l)
   for (int p = 0; p < g.size; ++p) {
     t.s1[p] = shapeValues(g.points[p].xi, l, 1);
     t.s2[p] = shapeValues(g.points[p].xi, l, 2);
+    t.legendre1[p] = legendre01(1, g.points[p].xi);
   }
+  for (int j = 0; j < kAssumedTerms; ++j)
+    for (int p = 0; p < kGaussPoints; ++p) t.projectionWeight[j][p] = projectionWeight(j, p);
   return t;
 }
 
@@ -132,14 +156,6 @@ void addKronecker(const Eigen::Matrix4d &P, const Eigen::Matrix4d &Q, Mat8 &M)
     }
 }
 
-// Orthonormal Legendre polynomials on [0, 1] (degree 0 and 1): the basis of the assumed axial strain.
-// The 5-point rule, computed once.
-struct GaussRule5 {
-  double xi[kGaussPoints], w[kGaussPoints];
-  GaussRule5() { gaussLegendre01(kGaussPoints, xi, w); }
-};
-
-inline double legendre01(int j, double xi) { return j == 0 ? 1.0 : std::sqrt(3.0) * (2.0 * xi - 1.0); }
 
 inline Vec2 slopeAt(const Eigen::Vector4d &s1, const Vec8 &e)
 {
@@ -318,9 +334,77 @@ double strainEnergy(const Section &sec, double l, const Vec8 &e)
   return 0.5 * l * U;
 }
 
+namespace {
+
+// internalForce without the tangent (every residual evaluation): the
+// operations of the general path below, in the same order, on scalars, so
+// the force is bit-identical to it (test AncfElement.ForceOnlyPathIsBitIdentical).
+// What it saves is data movement, not arithmetic: no AxialProjection
+// record (alpha, gradients) is built and returned, the Legendre weights
+// come from the shape table, and r', r'' stay in registers as x and y parts
+// instead of 2-vectors (the Eigen path spent more instructions on moves and
+// shuffles than on its ~400 flops; callgrind, docs/performance.md).
+void internalForceOnly(const Section &sec, double l, const QuadRule &g, const ShapeTable &shapes, const double *e,
+                       double *f)
+{
+  constexpr int kMax = kGaussPoints + kReducedAxialPoints;
+  double r1x[kMax], r1y[kMax], r2x[kMax], r2y[kMax];
+  for (int p = 0; p < g.size; ++p) {
+    const double *s1 = shapes.s1[p].data(), *s2 = shapes.s2[p].data();
+    double ax = 0, ay = 0, bx = 0, by = 0;
+    for (int k = 0; k < 4; ++k) {
+      ax += s1[k] * e[2 * k];
+      ay += s1[k] * e[2 * k + 1];
+      bx += s2[k] * e[2 * k];
+      by += s2[k] * e[2 * k + 1];
+    }
+    r1x[p] = ax, r1y[p] = ay, r2x[p] = bx, r2y[p] = by;
+  }
+  // projectAxialStrain(.., gradients = false) with the slopes above.
+  const double gamma = assumedPointwiseWeight(sec, l);
+  const bool projected = sec.axialIntegration == AxialIntegration::Assumed && gamma < 1.0;
+  double alpha0 = 0, alpha1 = 0;
+  if (projected)
+    for (int p = 0; p < kGaussPoints; ++p) {
+      const double eps = 0.5 * ((r1x[p] * r1x[p] + r1y[p] * r1y[p]) - 1.0);
+      alpha0 += shapes.projectionWeight[0][p] * eps;
+      alpha1 += shapes.projectionWeight[1][p] * eps;
+    }
+  const double EAproj = (1.0 - gamma) * sec.EA;
+  double fl[8] = {0, 0, 0, 0, 0, 0, 0, 0};
+  for (int p = 0; p < g.size; ++p) {
+    const QuadPoint &q = g.points[p];
+    const double EA = q.axial * gamma * sec.EA, EI = q.bending * sec.EI;
+    const double *s1 = shapes.s1[p].data(), *s2 = shapes.s2[p].data();
+    const double wx = q.w * l;
+    const double J2 = r1x[p] * r1x[p] + r1y[p] * r1y[p], iJ2 = 1.0 / J2;
+    const double eps = 0.5 * (J2 - 1.0);
+    const double K = (r1x[p] * r2y[p] - r1y[p] * r2x[p]) * iJ2;
+    // proj.strain(q.xi): alpha_0 phi_0 + alpha_1 phi_1, summed from zero.
+    double strain = 0;
+    strain += alpha0 * 1.0;
+    strain += alpha1 * shapes.legendre1[p];
+    const double N = EA * eps + (projected ? EAproj * strain : 0.0);
+    const double a = N - 2.0 * EI * K * K * iJ2, b = EI * K * iJ2;
+    const double v1x = wx * (a * r1x[p] + b * r2y[p]), v1y = wx * (a * r1y[p] + b * -r2x[p]);
+    const double wb = wx * b, v2x = wb * r1y[p], v2y = wb * -r1x[p];
+    for (int k = 0; k < 4; ++k) {
+      fl[2 * k] += s1[k] * v1x - s2[k] * v2x;
+      fl[2 * k + 1] += s1[k] * v1y - s2[k] * v2y;
+    }
+  }
+  for (int i = 0; i < 8; ++i) f[i] = fl[i];
+}
+
+} // namespace
+
 void internalForce(const Section &sec, double l, const Vec8 &e, Vec8 &f, Mat8 *Kt)
 {
   const QuadRule &g = quadRule(sec.axialIntegration);
+  if (!Kt) {
+    internalForceOnly(sec, l, g, shapeTable(g, l), e.data(), f.data());
+    return;
+  }
   const ShapeTable &shapes = shapeTable(g, l);
   // r' and r'' at every point, once: the assumed strain's projection (on the
   // same 5 points when it applies) and the loop below both need them.
