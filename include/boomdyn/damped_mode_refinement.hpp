@@ -14,6 +14,7 @@
 // new factorization); all arithmetic is real (complex vectors as pairs).
 #pragma once
 
+#include "boomdyn/compact_matrix.hpp"
 #include "boomdyn/damped_eigen_solver.hpp"
 #include "boomdyn/local_block.hpp"
 #include "boomdyn/petsc_handle.hpp"
@@ -69,6 +70,7 @@ public:
 private:
   Assembler &assembler_;
   PetscHandle<Mat> D_;
+  CompactMatrix Dc_; // D without explicit zeros, for the products (compact_matrix.hpp)
   int pattern_ = -1;
   LocalBlocks blocks_; // the vectors of the refinement as dense local blocks (local_block.hpp)
 };

@@ -10,6 +10,7 @@
 // element) only the values are assembled and refactored numerically.
 #pragma once
 
+#include "boomdyn/compact_matrix.hpp"
 #include "boomdyn/eigen_solver.hpp"
 #include "boomdyn/local_block.hpp"
 #include "boomdyn/petsc_handle.hpp"
@@ -46,9 +47,11 @@ public:
   // A, B at the state and the factorization of A - target B (called by
   // refine(); the damped refinement calls it when refine() did not run).
   PetscErrorCode prepare(double t, Vec q, Vec lambda, double target, bool *factored);
-  // The pencil and the factorization of the last prepare().
-  Mat stiffness() const { return A_; }
-  Mat mass() const { return B_; }
+  // The pencil and the factorization of the last prepare(). The matrices
+  // are compact copies for products (compact_matrix.hpp: the same operator,
+  // bitwise the same products, without the pattern's explicit zeros).
+  Mat stiffness() const { return Ac_.get(); }
+  Mat mass() const { return Bc_.get(); }
   KSP shiftedSolver() const { return ksp_; }
   bool factoredAtLastPrepare() const { return factored_; }
   // The constraint scale sigma of the last prepare()'s pencil (pencilState).
@@ -58,6 +61,7 @@ private:
 
   Assembler &assembler_;
   PetscHandle<Mat> A_, B_, S_;
+  CompactMatrix Ac_, Bc_; // A and B without explicit zeros, for the products
   PetscHandle<KSP> ksp_;
   int pattern_ = -1;
   bool factored_ = false;

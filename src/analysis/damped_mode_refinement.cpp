@@ -343,6 +343,8 @@ PetscErrorCode DampedModeRefiner::refine(double t, Vec q, Vec lambda, Mat K, Mat
     pattern_ = assembler_.patternVersion();
   }
   PetscCall(assembleDamping(assembler_, t, q, lambda, D_, pencilScale));
+  PetscCall(Dc_.update(D_));
+  const Mat D = Dc_.get();
   if (!blocks_.ready()) PetscCall(blocks_.setUp(modes[0]));
   const PetscInt n = blocks_.localSize(), nq = assembler_.model().numCoordinates();
   MultiplierFit multipliers;
@@ -358,7 +360,7 @@ PetscErrorCode DampedModeRefiner::refine(double t, Vec q, Vec lambda, Mat K, Mat
   Block phi(n, m);
   for (int k = 0; k < m; ++k) {
     PetscCall(blocks_.fromVec(modes[k], phi.col(k).data()));
-    PetscCall(sub.append(K, D_, M, phi.col(k)));
+    PetscCall(sub.append(K, D, M, phi.col(k)));
   }
   // The first-order change of the modes by the damping: T(i w) (phi + dx) = 0
   // gives (K - w^2 M) dx ~ -i w D phi, approximated with P = K - tau M and
@@ -369,13 +371,13 @@ PetscErrorCode DampedModeRefiner::refine(double t, Vec q, Vec lambda, Mat K, Mat
   // damping) saved none.
   Eigen::VectorXd rhs(n), u(n), u2(n);
   for (int k = 0; k < count && k < m && ok; ++k) { // the wanted ones; the guard modes need no correction
-    PetscCall(blocks_.multiply(D_, phi.col(k).data(), rhs.data()));
+    PetscCall(blocks_.multiply(D, phi.col(k).data(), rhs.data()));
     PetscCall(blocks_.solve(solver, rhs.data(), u.data(), &ok));
     if (!ok) break;
-    PetscCall(sub.append(K, D_, M, u));
+    PetscCall(sub.append(K, D, M, u));
     PetscCall(blocks_.multiply(M, u.data(), rhs.data()));
     PetscCall(blocks_.solve(solver, rhs.data(), u2.data(), &ok));
-    if (ok) PetscCall(sub.append(K, D_, M, u2));
+    if (ok) PetscCall(sub.append(K, D, M, u2));
   }
 
   Block Xr(n, count), Xi(n, count), Rr(n, count), Ri(n, count), KXr(n, count), KXi(n, count);
@@ -461,7 +463,7 @@ PetscErrorCode DampedModeRefiner::refine(double t, Vec q, Vec lambda, Mat K, Mat
     }
     if (worst <= tolerance || worst > before) break; // converged, or past the round-off floor
     before = worst;
-    for (const Eigen::VectorXd &e : expansion) PetscCall(sub.append(K, D_, M, e));
+    for (const Eigen::VectorXd &e : expansion) PetscCall(sub.append(K, D, M, e));
   }
   info->worstResidual = bestWorst;
   if (bestWorst <= tolerance) {
