@@ -40,12 +40,14 @@ class DampedModeRefiner {
 public:
   explicit DampedModeRefiner(Assembler &assembler) : assembler_(assembler) {}
 
-  // K, M: the symmetric pencil at (t, q, lambda); solver: a factorization of
+  // K, M: the symmetric pencil at (t, q, lambda); D: the damping matrix at
+  // that state (ModeRefiner::damping()), or null to assemble it here;
+  // solver: a factorization of
   // K - tau M (any tau near the modes); modes: undamped mode vectors at the
   // same state, ascending. On success (*converged) result holds the `count`
   // lowest oscillating damped modes by |lambda| (as solveDampedModes), with
   // their vectors.
-  PetscErrorCode refine(double t, Vec q, Vec lambda, Mat K, Mat M, KSP solver,
+  PetscErrorCode refine(double t, Vec q, Vec lambda, Mat K, Mat M, Mat D, KSP solver,
                         const std::vector<PetscHandle<Vec>> &modes, int count, DampedModalResult *result,
                         DampedRefinementInfo *info, bool *converged);
 

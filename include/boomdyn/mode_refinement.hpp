@@ -43,6 +43,9 @@ public:
   // from the final vectors the residual differs by about the floor.
   double floorTolerance = 5e-9;
   int maxIterations = 10;
+  // Assemble the damping matrix D with A and B in prepare() (one pass over
+  // the items, Assembler::evaluatePencil), for the damped refinement.
+  bool withDamping = false;
 
   // A, B at the state and the factorization of A - target B (called by
   // refine(); the damped refinement calls it when refine() did not run).
@@ -52,6 +55,7 @@ public:
   // bitwise the same products, without the pattern's explicit zeros).
   Mat stiffness() const { return Ac_.get(); }
   Mat mass() const { return Bc_.get(); }
+  Mat damping() const { return withDamping ? Dc_.get() : nullptr; } // with withDamping
   KSP shiftedSolver() const { return ksp_; }
   bool factoredAtLastPrepare() const { return factored_; }
   // The constraint scale sigma of the last prepare()'s pencil (pencilState).
@@ -60,8 +64,8 @@ public:
 private:
 
   Assembler &assembler_;
-  PetscHandle<Mat> A_, B_, S_;
-  CompactMatrix Ac_, Bc_; // A and B without explicit zeros, for the products
+  PetscHandle<Mat> A_, B_, S_, D_;
+  CompactMatrix Ac_, Bc_, Dc_; // A, B, D without explicit zeros, for the products
   PetscHandle<KSP> ksp_;
   int pattern_ = -1;
   bool factored_ = false;

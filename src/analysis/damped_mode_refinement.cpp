@@ -326,7 +326,7 @@ bool projectedModes(const Eigen::MatrixXd &K, const Eigen::MatrixXd &D, const Ei
 
 } // namespace
 
-PetscErrorCode DampedModeRefiner::refine(double t, Vec q, Vec lambda, Mat K, Mat M, KSP solver,
+PetscErrorCode DampedModeRefiner::refine(double t, Vec q, Vec lambda, Mat K, Mat M, Mat D, KSP solver,
                                          const std::vector<PetscHandle<Vec>> &modes, int count,
                                          DampedModalResult *result, DampedRefinementInfo *info, bool *converged)
 {
@@ -337,14 +337,16 @@ PetscErrorCode DampedModeRefiner::refine(double t, Vec q, Vec lambda, Mat K, Mat
   *result = DampedModalResult{};
   if (modes.empty() || count < 1) PetscFunctionReturn(0);
   PetscCall(PetscLogEventBegin(logEvents().eigen, 0, 0, 0, 0));
-  if (!D_ || pattern_ != assembler_.patternVersion()) {
-    D_.reset();
-    PetscCall(assembler_.createMatrix(D_.address()));
-    pattern_ = assembler_.patternVersion();
+  if (!D) {
+    if (!D_ || pattern_ != assembler_.patternVersion()) {
+      D_.reset();
+      PetscCall(assembler_.createMatrix(D_.address()));
+      pattern_ = assembler_.patternVersion();
+    }
+    PetscCall(assembleDamping(assembler_, t, q, lambda, D_, pencilScale));
+    PetscCall(Dc_.update(D_));
+    D = Dc_.get();
   }
-  PetscCall(assembleDamping(assembler_, t, q, lambda, D_, pencilScale));
-  PetscCall(Dc_.update(D_));
-  const Mat D = Dc_.get();
   if (!blocks_.ready()) PetscCall(blocks_.setUp(modes[0]));
   const PetscInt n = blocks_.localSize(), nq = assembler_.model().numCoordinates();
   MultiplierFit multipliers;

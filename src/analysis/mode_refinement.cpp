@@ -19,6 +19,7 @@ PetscErrorCode ModeRefiner::prepare(double t, Vec q, Vec lambda, double target, 
     // its symbolic factorization (docs/petsc-notes.md trap 1).
     PetscCall(assembler_.createMatrix(A_.address()));
     PetscCall(assembler_.createMatrix(B_.address()));
+    D_.reset();
     S_.reset(); // made from A below: a matrix made by createMatrix() is not assembled yet
     if (!ksp_) {
       PetscCall(KSPCreate(assembler_.comm(), ksp_.address()));
@@ -30,9 +31,11 @@ PetscErrorCode ModeRefiner::prepare(double t, Vec q, Vec lambda, double target, 
     }
     pattern_ = assembler_.patternVersion();
   }
-  PetscCall(assemblePencil(assembler_, t, q, lambda, A_, B_, &sigma_));
+  if (withDamping && !D_) PetscCall(assembler_.createMatrix(D_.address()));
+  PetscCall(assemblePencil(assembler_, t, q, lambda, A_, B_, &sigma_, withDamping ? D_.get() : nullptr));
   PetscCall(Ac_.update(A_));
   PetscCall(Bc_.update(B_));
+  if (withDamping) PetscCall(Dc_.update(D_));
   // A, B and S share one exact pattern (Assembler::createMatrix): the copy and
   // the update keep S's nonzero state, so the factorization below is numeric only.
   if (!S_) PetscCall(MatDuplicate(A_, MAT_COPY_VALUES, S_.address()));
