@@ -39,6 +39,14 @@ public:
   PetscErrorCode setOffsets(Vec qc, Vec vc, Vec ac);
   // Residual into F and Jacobian into J (either may be null).
   PetscErrorCode evaluate(const AssemblyContext &ctx, Vec x, Vec F, Mat J);
+  // The eigen-analysis' matrices at the state x = [q | lambda_hat] (time,
+  // sigma from ctx) in one pass over the items, each item's values gathered
+  // once: A = dR/dq (stiffness with the constraint blocks), B = dR/da (mass,
+  // zero constraint blocks), D = dR/dv at v = 0 (damping, zero constraint
+  // blocks; skipped when null). The same matrices, bit for bit, as three
+  // evaluate() passes with those maps (q = x, v = 0; a = 0 or a = x). Leaves
+  // the offsets at q = x (setOffsets(x, null, null)).
+  PetscErrorCode evaluatePencil(const AssemblyContext &ctx, Vec x, Mat A, Mat B, Mat D);
   // Energy and max |C| over all constraint rows at the state given by x
   // through the affine map.
   PetscErrorCode diagnostics(const AssemblyContext &ctx, Vec x, EnergyParts *energy, PetscReal *maxViolation);

@@ -14,6 +14,7 @@
 // new factorization); all arithmetic is real (complex vectors as pairs).
 #pragma once
 
+#include "boomdyn/compact_matrix.hpp"
 #include "boomdyn/damped_eigen_solver.hpp"
 #include "boomdyn/local_block.hpp"
 #include "boomdyn/petsc_handle.hpp"
@@ -39,12 +40,14 @@ class DampedModeRefiner {
 public:
   explicit DampedModeRefiner(Assembler &assembler) : assembler_(assembler) {}
 
-  // K, M: the symmetric pencil at (t, q, lambda); solver: a factorization of
+  // K, M: the symmetric pencil at (t, q, lambda); D: the damping matrix at
+  // that state (ModeRefiner::damping()), or null to assemble it here;
+  // solver: a factorization of
   // K - tau M (any tau near the modes); modes: undamped mode vectors at the
   // same state, ascending. On success (*converged) result holds the `count`
   // lowest oscillating damped modes by |lambda| (as solveDampedModes), with
   // their vectors.
-  PetscErrorCode refine(double t, Vec q, Vec lambda, Mat K, Mat M, KSP solver,
+  PetscErrorCode refine(double t, Vec q, Vec lambda, Mat K, Mat M, Mat D, KSP solver,
                         const std::vector<PetscHandle<Vec>> &modes, int count, DampedModalResult *result,
                         DampedRefinementInfo *info, bool *converged);
 
@@ -69,6 +72,7 @@ public:
 private:
   Assembler &assembler_;
   PetscHandle<Mat> D_;
+  CompactMatrix Dc_; // D without explicit zeros, for the products (compact_matrix.hpp)
   int pattern_ = -1;
   LocalBlocks blocks_; // the vectors of the refinement as dense local blocks (local_block.hpp)
 };

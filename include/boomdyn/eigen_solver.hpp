@@ -53,8 +53,10 @@ PetscInt finiteModeBound(const Model &model);
 // A and B of the pencil at (t, q, lambda) into matrices made by
 // assembler.createMatrix() (same pattern). Leaves the assembler's offsets at q.
 // sigmaOut (optional): the scale of the constraint blocks used (pencilState).
+// D (optional): the damping matrix at the same state as well, in the same
+// pass over the items (Assembler::evaluatePencil; equal to assembleDamping's).
 PetscErrorCode assemblePencil(Assembler &assembler, double t, Vec q, Vec lambda, Mat A, Mat B,
-                              double *sigmaOut = nullptr);
+                              double *sigmaOut = nullptr, Mat D = nullptr);
 
 // The state x = [q | lambda / sigma] at which the pencil is assembled
 // (x made by assembler.createVector()), and sigma, the scale of the

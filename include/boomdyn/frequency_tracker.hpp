@@ -61,6 +61,8 @@ public:
     : assembler_(assembler), count_(count), fullSolve_(fullSolve), follow_(followHz.empty() ? follow : (int)followHz.size()),
       followHz_(std::move(followHz)), refiner_(assembler), dampedRefiner_(assembler)
   {
+    // A damped model's analyses assemble D with A and B (analyzeDamped).
+    refiner_.withDamping = assembler.model().hasPhysicalDamping();
   }
 
   PetscErrorCode analyze(double t, Vec q, Vec lambda, TrackedModes *out);

@@ -326,7 +326,7 @@ bool projectedModes(const Eigen::MatrixXd &K, const Eigen::MatrixXd &D, const Ei
 
 } // namespace
 
-PetscErrorCode DampedModeRefiner::refine(double t, Vec q, Vec lambda, Mat K, Mat M, KSP solver,
+PetscErrorCode DampedModeRefiner::refine(double t, Vec q, Vec lambda, Mat K, Mat M, Mat D, KSP solver,
                                          const std::vector<PetscHandle<Vec>> &modes, int count,
                                          DampedModalResult *result, DampedRefinementInfo *info, bool *converged)
 {
@@ -337,12 +337,16 @@ PetscErrorCode DampedModeRefiner::refine(double t, Vec q, Vec lambda, Mat K, Mat
   *result = DampedModalResult{};
   if (modes.empty() || count < 1) PetscFunctionReturn(0);
   PetscCall(PetscLogEventBegin(logEvents().eigen, 0, 0, 0, 0));
-  if (!D_ || pattern_ != assembler_.patternVersion()) {
-    D_.reset();
-    PetscCall(assembler_.createMatrix(D_.address()));
-    pattern_ = assembler_.patternVersion();
+  if (!D) {
+    if (!D_ || pattern_ != assembler_.patternVersion()) {
+      D_.reset();
+      PetscCall(assembler_.createMatrix(D_.address()));
+      pattern_ = assembler_.patternVersion();
+    }
+    PetscCall(assembleDamping(assembler_, t, q, lambda, D_, pencilScale));
+    PetscCall(Dc_.update(D_));
+    D = Dc_.get();
   }
-  PetscCall(assembleDamping(assembler_, t, q, lambda, D_, pencilScale));
   if (!blocks_.ready()) PetscCall(blocks_.setUp(modes[0]));
   const PetscInt n = blocks_.localSize(), nq = assembler_.model().numCoordinates();
   MultiplierFit multipliers;
@@ -358,7 +362,7 @@ PetscErrorCode DampedModeRefiner::refine(double t, Vec q, Vec lambda, Mat K, Mat
   Block phi(n, m);
   for (int k = 0; k < m; ++k) {
     PetscCall(blocks_.fromVec(modes[k], phi.col(k).data()));
-    PetscCall(sub.append(K, D_, M, phi.col(k)));
+    PetscCall(sub.append(K, D, M, phi.col(k)));
   }
   // The first-order change of the modes by the damping: T(i w) (phi + dx) = 0
   // gives (K - w^2 M) dx ~ -i w D phi, approximated with P = K - tau M and
@@ -369,13 +373,13 @@ PetscErrorCode DampedModeRefiner::refine(double t, Vec q, Vec lambda, Mat K, Mat
   // damping) saved none.
   Eigen::VectorXd rhs(n), u(n), u2(n);
   for (int k = 0; k < count && k < m && ok; ++k) { // the wanted ones; the guard modes need no correction
-    PetscCall(blocks_.multiply(D_, phi.col(k).data(), rhs.data()));
+    PetscCall(blocks_.multiply(D, phi.col(k).data(), rhs.data()));
     PetscCall(blocks_.solve(solver, rhs.data(), u.data(), &ok));
     if (!ok) break;
-    PetscCall(sub.append(K, D_, M, u));
+    PetscCall(sub.append(K, D, M, u));
     PetscCall(blocks_.multiply(M, u.data(), rhs.data()));
     PetscCall(blocks_.solve(solver, rhs.data(), u2.data(), &ok));
-    if (ok) PetscCall(sub.append(K, D_, M, u2));
+    if (ok) PetscCall(sub.append(K, D, M, u2));
   }
 
   Block Xr(n, count), Xi(n, count), Rr(n, count), Ri(n, count), KXr(n, count), KXi(n, count);
@@ -461,7 +465,7 @@ PetscErrorCode DampedModeRefiner::refine(double t, Vec q, Vec lambda, Mat K, Mat
     }
     if (worst <= tolerance || worst > before) break; // converged, or past the round-off floor
     before = worst;
-    for (const Eigen::VectorXd &e : expansion) PetscCall(sub.append(K, D_, M, e));
+    for (const Eigen::VectorXd &e : expansion) PetscCall(sub.append(K, D, M, e));
   }
   info->worstResidual = bestWorst;
   if (bestWorst <= tolerance) {

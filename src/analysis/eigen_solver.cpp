@@ -117,7 +117,8 @@ PetscErrorCode pencilState(Assembler &assembler, Vec q, Vec lambda, Vec x, doubl
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode assemblePencil(Assembler &assembler, double t, Vec q, Vec lambda, Mat A, Mat B, double *sigmaOut)
+PetscErrorCode assemblePencil(Assembler &assembler, double t, Vec q, Vec lambda, Mat A, Mat B, double *sigmaOut,
+                              Mat D)
 {
   PetscHandle<Vec> x;
   double sigma = 0; // computed by pencilState
@@ -127,14 +128,9 @@ PetscErrorCode assemblePencil(Assembler &assembler, double t, Vec q, Vec lambda,
   AssemblyContext ctx;
   ctx.t = t;
   ctx.sigma = sigma;
-  PetscCall(assembler.setOffsets(nullptr, nullptr, nullptr));
-  ctx.kin = {1.0, 0.0, 0.0};
-  PetscCall(assembler.evaluate(ctx, x, nullptr, A));
-  // B: the same pattern as A (explicit zeros), so ST can combine them cheaply.
-  ctx.kin = {0.0, 0.0, 1.0};
-  ctx.constraintBlocks = false;
-  PetscCall(assembler.setOffsets(x, nullptr, nullptr)); // q = x (cQ = 0), so every kernel sees the real state
-  PetscCall(assembler.evaluate(ctx, x, nullptr, B));
+  // A, B (and D) in one pass over the items; B and D have A's pattern
+  // (explicit zeros), so ST and the refinement can combine them cheaply.
+  PetscCall(assembler.evaluatePencil(ctx, x, A, B, D));
   if (sigmaOut) *sigmaOut = sigma;
   PetscFunctionReturn(0);
 }

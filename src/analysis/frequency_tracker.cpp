@@ -247,8 +247,8 @@ PetscErrorCode FrequencyTracker::analyzeDamped(double t, Vec q, Vec lambda, Trac
     dampedRefiner_.keepVectors = modes != nullptr;
     dampedRefiner_.pencilScale = refiner_.pencilScale(); // K and M of this state (prepare() above or in analyze())
     if (factored)
-      PetscCall(dampedRefiner_.refine(t, q, lambda, refiner_.stiffness(), refiner_.mass(), refiner_.shiftedSolver(),
-                                      basis_, found_, &dm, &info, &refined));
+      PetscCall(dampedRefiner_.refine(t, q, lambda, refiner_.stiffness(), refiner_.mass(), refiner_.damping(),
+                                      refiner_.shiftedSolver(), basis_, found_, &dm, &info, &refined));
     if (!refined && !dampedFallbackReported_) {
       dampedFallbackReported_ = true;
       PetscCall(PetscPrintf(assembler_.comm(),

@@ -19,6 +19,7 @@ PetscErrorCode ModeRefiner::prepare(double t, Vec q, Vec lambda, double target, 
     // its symbolic factorization (docs/petsc-notes.md trap 1).
     PetscCall(assembler_.createMatrix(A_.address()));
     PetscCall(assembler_.createMatrix(B_.address()));
+    D_.reset();
     S_.reset(); // made from A below: a matrix made by createMatrix() is not assembled yet
     if (!ksp_) {
       PetscCall(KSPCreate(assembler_.comm(), ksp_.address()));
@@ -30,7 +31,11 @@ PetscErrorCode ModeRefiner::prepare(double t, Vec q, Vec lambda, double target, 
     }
     pattern_ = assembler_.patternVersion();
   }
-  PetscCall(assemblePencil(assembler_, t, q, lambda, A_, B_, &sigma_));
+  if (withDamping && !D_) PetscCall(assembler_.createMatrix(D_.address()));
+  PetscCall(assemblePencil(assembler_, t, q, lambda, A_, B_, &sigma_, withDamping ? D_.get() : nullptr));
+  PetscCall(Ac_.update(A_));
+  PetscCall(Bc_.update(B_));
+  if (withDamping) PetscCall(Dc_.update(D_));
   // A, B and S share one exact pattern (Assembler::createMatrix): the copy and
   // the update keep S's nonzero state, so the factorization below is numeric only.
   if (!S_) PetscCall(MatDuplicate(A_, MAT_COPY_VALUES, S_.address()));
@@ -67,7 +72,7 @@ PetscErrorCode ModeRefiner::refine(double t, Vec q, Vec lambda, double target, i
   Eigen::MatrixXd V(n, m), BV(n, m), W(n, m), AW(n, m), BW(n, m), R(n, count);
   for (int j = 0; j < m; ++j) {
     PetscCall(blocks_.fromVec(basis[j], V.col(j).data()));
-    PetscCall(blocks_.multiply(B_, V.col(j).data(), BV.col(j).data()));
+    PetscCall(blocks_.multiply(Bc_.get(), V.col(j).data(), BV.col(j).data()));
   }
   Eigen::MatrixXd GA, GB;
   Eigen::VectorXd an, rn;
@@ -75,8 +80,8 @@ PetscErrorCode ModeRefiner::refine(double t, Vec q, Vec lambda, double target, i
   for (int it = 1; it <= maxIterations; ++it) {
     for (int j = 0; j < m && solved; ++j) {
       PetscCall(blocks_.solve(ksp_, BV.col(j).data(), W.col(j).data(), &solved));
-      PetscCall(blocks_.multiply(A_, W.col(j).data(), AW.col(j).data()));
-      PetscCall(blocks_.multiply(B_, W.col(j).data(), BW.col(j).data()));
+      PetscCall(blocks_.multiply(Ac_.get(), W.col(j).data(), AW.col(j).data()));
+      PetscCall(blocks_.multiply(Bc_.get(), W.col(j).data(), BW.col(j).data()));
     }
     if (!solved) break;
     // Projected pencil (W^T A W, W^T B W), symmetrized against round-off.

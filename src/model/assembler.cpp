@@ -267,6 +267,66 @@ PetscErrorCode Assembler::evaluate(const AssemblyContext &context, Vec x, Vec F,
   PetscFunctionReturn(0);
 }
 
+PetscErrorCode Assembler::evaluatePencil(const AssemblyContext &context, Vec x, Mat A, Mat B, Mat D)
+{
+  // The three passes the eigen-analysis made before (docs/model.md §5), as
+  // maps q = qc + cQ x, v = vc + cV x (cZ x for first-order states),
+  // a = ac + cA x with the same constants and the same floating-point
+  // operations, so that every item sees bitwise the values it saw then:
+  //   A: qc = vc = ac = 0, cQ = 1, cV = cZ = cA = 0, constraint blocks as ctx;
+  //   B: qc = x, vc = ac = 0, cA = 1, cQ = cV = cZ = 0, no constraint blocks;
+  //   D: qc = x, vc = -x (0 for first-order states), ac = 0, cV = 1,
+  //      cQ = cZ = cA = 0, no constraint blocks.
+  // What one pass saves: the item loop and gathers, and the D pass's own
+  // pencil state; each item is still evaluated once per matrix (WorkItem
+  // has one Jacobian per call).
+  struct Pass {
+    AssemblyContext ctx;
+    Mat J;
+    std::vector<PetscScalar> values;
+  };
+  Pass passes[3] = {{context, A, {}}, {context, B, {}}, {context, D, {}}};
+  passes[0].ctx.kin = {1.0, 0.0, 0.0, 0.0};
+  passes[1].ctx.kin = {0.0, 0.0, 1.0, 0.0};
+  passes[2].ctx.kin = {0.0, 1.0, 0.0, 0.0};
+  passes[1].ctx.constraintBlocks = passes[2].ctx.constraintBlocks = false;
+  for (Pass &p : passes) {
+    p.ctx.residualWanted = false;
+    if (p.J) p.values.assign(cooV_.size(), 0.0);
+  }
+  PetscFunctionBeginUser;
+  PetscCall(PetscLogEventBegin(logEvents().assembly, 0, 0, 0, 0));
+  PetscCall(beginLocal(passes[0].ctx, x));
+  ItemValues vals;
+  vals.q = bq_.data(), vals.v = bv_.data(), vals.a = ba_.data();
+  for (std::size_t k = 0; k < items_.size(); ++k) {
+    const int begin = itemStart_[k], n = itemStart_[k + 1] - begin, nc = itemCoords_[k];
+    for (int i = 0; i < n; ++i) bl_[i] = xl_[itemLocal_[begin + i]];
+    vals.lambda = bl_.data() + nc;
+    for (int pass = 0; pass < 3; ++pass) {
+      Pass &p = passes[pass];
+      if (!p.J) continue;
+      const Kinematics &c = p.ctx.kin;
+      for (int i = 0; i < n; ++i) {
+        const PetscInt li = itemLocal_[begin + i];
+        const double xi = bl_[i], zero = 0.0;
+        const double qc = pass == 0 ? zero : xi, vc = pass == 2 && !firstOrder_[li] ? -xi : zero;
+        bq_[i] = qc + c.cQ * xi;
+        bv_[i] = vc + (firstOrder_[li] ? c.cZ : c.cV) * xi;
+        ba_[i] = zero + c.cA * xi;
+      }
+      std::fill(br_.begin(), br_.begin() + n, 0.0);
+      items_[k]->evaluate(p.ctx, vals, br_.data(), p.values.data() + cooStart_[k]);
+    }
+  }
+  PetscCall(endLocal());
+  for (Pass &p : passes)
+    if (p.J) PetscCall(MatSetValuesCOO(p.J, p.values.data(), INSERT_VALUES));
+  PetscCall(setOffsets(x, nullptr, nullptr));
+  PetscCall(PetscLogEventEnd(logEvents().assembly, 0, 0, 0, 0));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode Assembler::diagnostics(const AssemblyContext &ctx, Vec x, EnergyParts *energy, PetscReal *maxViolation)
 {
   PetscFunctionBeginUser;
