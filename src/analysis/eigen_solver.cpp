@@ -97,6 +97,12 @@ PetscErrorCode pencilState(Assembler &assembler, Vec q, Vec lambda, Vec x, doubl
   double sigma = *sigmaOut;
   if (!(sigma > 0)) {
     PetscReal massScale, stiffScale;
+    // The scales at q itself: characteristicScales gathers q through the
+    // offsets (qc + x), and whatever ran last may have left them nonzero
+    // (an eigen-analysis' own passes leave qc = its state). The pencil's
+    // passes set their own offsets, so clearing them here changes nothing
+    // else.
+    PetscCall(assembler.setOffsets(nullptr, nullptr, nullptr));
     PetscCall(assembler.characteristicScales(q, &massScale, &stiffScale));
     sigma = stiffScale > 0 ? stiffScale : 1.0;
   }

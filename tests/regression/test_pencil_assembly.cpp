@@ -102,3 +102,38 @@ TEST(PencilAssembly, OnePassEqualsTheSeparatePassesBitwise)
   EXPECT_GT(compared, 0);
   EXPECT_EQ(differ, 0) << "of " << compared << " entries";
 }
+
+// The constraint scale sigma of the pencil is the stiffness scale at the
+// analysed state, whatever offsets earlier work left in the assembler: it
+// once read q = qc + q when an earlier analysis had left qc = its state.
+TEST(PencilAssembly, ScaleDoesNotDependOnTheOffsetsLeftBehind)
+{
+  Scene scene = readSceneFile(std::string(BOOMDYN_SOURCE_DIR) + "/inputs/paper_extraction.yaml");
+  scene.dynamic.t_end = 0.005;
+  HandIntegration run(scene);
+  Assembler &assembler = run.assembler;
+  int states = 0;
+  auto onStep = [&](const StepInfo &s) -> PetscErrorCode {
+    PetscFunctionBeginUser;
+    Vec q = run.integrator->positions(), lambda = run.integrator->multipliers();
+    PetscHandle<Mat> A, B;
+    PetscCall(assembler.createMatrix(A.address()));
+    PetscCall(assembler.createMatrix(B.address()));
+    double clean = 0, afterOffsets = 0, afterAnalysis = 0;
+    PetscCall(assembler.setOffsets(nullptr, nullptr, nullptr));
+    PetscCall(assemblePencil(assembler, s.t, q, lambda, A, B, &clean));
+    // assemblePencil leaves qc = its state: a second analysis right after.
+    PetscCall(assemblePencil(assembler, s.t, q, lambda, A, B, &afterAnalysis));
+    PetscCall(assembler.setOffsets(q, nullptr, nullptr));
+    PetscCall(assemblePencil(assembler, s.t, q, lambda, A, B, &afterOffsets));
+    EXPECT_GT(clean, 0.0);
+    EXPECT_EQ(clean, afterAnalysis);
+    EXPECT_EQ(clean, afterOffsets);
+    ++states;
+    PetscFunctionReturn(0);
+  };
+  RunSummary summary;
+  check(integrate(*run.integrator, scene.dynamic, onStep, &summary));
+  EXPECT_TRUE(summary.completed);
+  EXPECT_GE(states, 4);
+}
