@@ -61,11 +61,10 @@ public:
     std::vector<double> f;
   };
   PetscErrorCode dampingForces(Vec q, Vec v, DampingForces *forces);
-  PetscErrorCode dampingWork(const DampingForces &forces, Vec dq, PetscReal *work);
-  // The work of two sets of damping forces (the same items, as two states
-  // of one model give) along one increment in one pass: work[k] is
-  // bit-identical to dampingWork(*forces[k], dq, &work[k]).
-  PetscErrorCode dampingWork(const DampingForces *const forces[2], Vec dq, PetscReal work[2]);
+  // The work of `count` sets of damping forces along one increment dq:
+  // work[k] = dq . f_k, summed item by item. Sets over the same items (two
+  // states of one model) in one pass; otherwise one pass per set.
+  PetscErrorCode dampingWork(const DampingForces *const forces[], int count, Vec dq, PetscReal work[]);
   // Mean diagonal of mass and stiffness over position coordinates at q = x.
   PetscErrorCode characteristicScales(Vec x, PetscReal *mass, PetscReal *stiffness);
 

@@ -377,55 +377,35 @@ PetscErrorCode Assembler::dampingForces(Vec q, Vec v, DampingForces *forces)
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode Assembler::dampingWork(const DampingForces *const forces[2], Vec dq, PetscReal work[2])
+PetscErrorCode Assembler::dampingWork(const DampingForces *const forces[], int count, Vec dq, PetscReal work[])
 {
   PetscFunctionBeginUser;
-  const DampingForces &a = *forces[0], &b = *forces[1];
-  if (a.items != b.items || a.first != b.first) { // not the same items: one pass each
-    PetscCall(dampingWork(a, dq, &work[0]));
-    PetscCall(dampingWork(b, dq, &work[1]));
-    PetscFunctionReturn(0);
-  }
-  AssemblyContext ctx;
-  ctx.kin = {1.0, 0.0, 0.0};
-  PetscCall(setOffsets(nullptr, nullptr, nullptr));
-  PetscCall(beginLocal(ctx, dq));
-  double local[2] = {0, 0};
-  ItemValues vals;
-  for (std::size_t i = 0; i < a.items.size(); ++i) {
-    const std::size_t k = a.items[i];
-    gather(k, vals);
-    double itemWork[2] = {0, 0}; // per item, then summed, as in the one-set pass
-    for (int j = 0; j < itemCoords_[k]; ++j) {
-      itemWork[0] += vals.q[j] * a.f[a.first[i] + j];
-      itemWork[1] += vals.q[j] * b.f[b.first[i] + j];
+  for (int k = 1; k < count; ++k)
+    if (forces[k]->items != forces[0]->items || forces[k]->first != forces[0]->first) {
+      // Not the same items (a contact point changed element in between): one pass each.
+      for (int j = 0; j < count; ++j) PetscCall(dampingWork(&forces[j], 1, dq, &work[j]));
+      PetscFunctionReturn(0);
     }
-    local[0] += itemWork[0], local[1] += itemWork[1];
-  }
-  PetscCall(endLocal());
-  PetscCallMPI(MPI_Allreduce(local, work, 2, MPI_DOUBLE, MPI_SUM, comm_));
-  PetscFunctionReturn(0);
-}
-
-PetscErrorCode Assembler::dampingWork(const DampingForces &forces, Vec dq, PetscReal *work)
-{
-  PetscFunctionBeginUser;
   // The increment as q (cQ = 1, no offsets).
   AssemblyContext ctx;
   ctx.kin = {1.0, 0.0, 0.0};
   PetscCall(setOffsets(nullptr, nullptr, nullptr));
   PetscCall(beginLocal(ctx, dq));
-  double local = 0;
+  std::vector<double> local(count, 0.0);
   ItemValues vals;
-  for (std::size_t i = 0; i < forces.items.size(); ++i) {
-    const std::size_t k = forces.items[i];
+  const DampingForces &layout = *forces[0];
+  for (std::size_t i = 0; i < layout.items.size(); ++i) {
+    const std::size_t k = layout.items[i];
     gather(k, vals);
-    double itemWork = 0; // per item, then summed: the order of the sums before
-    for (int j = 0; j < itemCoords_[k]; ++j) itemWork += vals.q[j] * forces.f[forces.first[i] + j];
-    local += itemWork;
+    for (int s = 0; s < count; ++s) {
+      const double *f = forces[s]->f.data() + layout.first[i];
+      double itemWork = 0; // per item, then summed: the order of the sums before
+      for (int j = 0; j < itemCoords_[k]; ++j) itemWork += vals.q[j] * f[j];
+      local[s] += itemWork;
+    }
   }
   PetscCall(endLocal());
-  PetscCallMPI(MPI_Allreduce(&local, work, 1, MPI_DOUBLE, MPI_SUM, comm_));
+  PetscCallMPI(MPI_Allreduce(local.data(), work, count, MPI_DOUBLE, MPI_SUM, comm_));
   PetscFunctionReturn(0);
 }
 

@@ -51,7 +51,7 @@ PetscErrorCode EnergyCheck::afterStep(const RunState &s, std::string *failure)
     PetscCall(VecWAXPY(dq_, -1.0, qPrevious_, s.q));
     PetscCall(assembler_.dampingForces(s.q, s.v, &forces_));
     const Assembler::DampingForces *const both[2] = {&forcesPrevious_, &forces_};
-    PetscCall(assembler_.dampingWork(both, dq_, w)); // one pass for both
+    PetscCall(assembler_.dampingWork(both, 2, dq_, w)); // one pass for both
     work = 0.5 * (w[0] + w[1]);
     std::swap(forcesPrevious_, forces_);
     PetscCall(remember(s));
