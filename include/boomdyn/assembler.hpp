@@ -48,17 +48,23 @@ public:
   // the offsets at q = x (setOffsets(x, null, null)).
   PetscErrorCode evaluatePencil(const AssemblyContext &ctx, Vec x, Mat A, Mat B, Mat D);
   // Energy and max |C| over all constraint rows at the state given by x
-  // through the affine map.
-  PetscErrorCode diagnostics(const AssemblyContext &ctx, Vec x, EnergyParts *energy, PetscReal *maxViolation);
+  // through the affine map. With `forces`, also the damping forces there
+  // (as dampingForces(q, v) with q and v from the same map: the energy check
+  // of every step needs both at the state reached, and one pass over the
+  // items gathers their values once instead of twice).
+  struct DampingForces;
+  PetscErrorCode diagnostics(const AssemblyContext &ctx, Vec x, EnergyParts *energy, PetscReal *maxViolation,
+                             DampingForces *forces = nullptr);
   // The damping forces Q_d(q, v) of this rank's items, item by item
   // (DampingForces), and their work dq . Q_d along an increment dq (summed
   // over the items and the ranks; collective): the energy check evaluates
-  // the forces once per state and takes their work along two steps. Both
-  // leave the offsets set: the solvers set their own before every assembly.
+  // the forces once per state and takes their work along two steps. dampingForces
+  // leaves the offsets set (the solvers set their own before every assembly).
   struct DampingForces {
     std::vector<std::size_t> items; // items with damping forces
     std::vector<int> first;         // where each one's forces start in f
     std::vector<double> f;
+    std::size_t used = 0; // while a pass fills f: entries taken so far
   };
   PetscErrorCode dampingForces(Vec q, Vec v, DampingForces *forces);
   // The work of `count` sets of damping forces along one increment dq:
@@ -85,6 +91,8 @@ private:
   PetscErrorCode beginLocal(const AssemblyContext &ctx, Vec x);
   PetscErrorCode endLocal();
   void gather(std::size_t k, ItemValues &vals);
+  void startDampingForces(DampingForces *forces) const;
+  void addDampingForce(std::size_t k, const ItemValues &vals, DampingForces *forces) const;
 
   const Model &model_;
   MPI_Comm comm_ = MPI_COMM_NULL;

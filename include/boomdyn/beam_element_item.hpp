@@ -24,6 +24,8 @@ public:
 
   // residual = M a + f - loadFactor g (inertia, internal force f, gravity g).
   void inertiaAndForces(const double *a, const ancf::Vec8 &f, double loadFactor, double *residual) const;
+  // M v, bit-identical to Eigen's (*mass_) * v (the Kronecker form when M = m ⊗ I2).
+  ancf::Vec8 massTimes(const double *v) const;
 
 private:
   // Kelvin-Voigt damping force into the residual, D (times cV) and dfd/dq (times cQ) into J.

@@ -92,7 +92,10 @@ public:
   Vec multipliers() const { return lambda_; }
   // Context for diagnostics at the current state (energy, violation); with
   // rightLimit false, as the step that landed on t_ saw it (before a jump at t_).
-  PetscErrorCode diagnostics(EnergyParts *energy, PetscReal *violation, bool rightLimit = true);
+  // With `forces`, the damping forces at that state in the same pass
+  // (Assembler::diagnostics).
+  PetscErrorCode diagnostics(EnergyParts *energy, PetscReal *violation, bool rightLimit = true,
+                             Assembler::DampingForces *forces = nullptr);
   NewtonSolver &newton() { return newton_; }
   // Adaptive steps (-boom_adaptive_tol): a converged step whose error
   // estimate exceeds tol is not taken (result.errorRejected). 0: off.

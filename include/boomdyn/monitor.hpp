@@ -31,6 +31,10 @@ struct RunState {
   Vec q = nullptr, v = nullptr, lambda = nullptr;
   EnergyParts energy;      // at this state
   double violation = 0;    // largest constraint violation at this state
+  // Damped models in dynamic runs: the damping forces at this state, from
+  // the pass that computed the energy (null: not computed, EnergyCheck
+  // evaluates them itself).
+  const Assembler::DampingForces *dampingForces = nullptr;
   const StepperState *stepper = nullptr; // step controller after this step (dynamic runs)
 };
 

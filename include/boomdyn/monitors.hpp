@@ -34,6 +34,8 @@ public:
   PetscErrorCode start(const RunState &s, bool) override;
   PetscErrorCode afterStep(const RunState &s, std::string *failure) override;
   const EnergyBalance &balance() const { return balance_; }
+  // True when the check uses damping forces (RunState::dampingForces).
+  bool wantsDampingForces() const { return damped_; }
 
 private:
   PetscErrorCode remember(const RunState &s);

@@ -100,6 +100,7 @@ private:
   std::unique_ptr<StaticSolver> statics_;
   std::vector<std::unique_ptr<Monitor>> monitors_;
   const EnergyCheck *energy_ = nullptr; // the first monitor of dynamic runs
+  Assembler::DampingForces dampingForces_; // at the state of the last dynamicState() (RunState::dampingForces)
   std::vector<std::string> conditioning_;
   StepperState stepper_;
   RunSummary summary_;

@@ -327,18 +327,22 @@ PetscErrorCode Assembler::evaluatePencil(const AssemblyContext &context, Vec x, 
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode Assembler::diagnostics(const AssemblyContext &ctx, Vec x, EnergyParts *energy, PetscReal *maxViolation)
+PetscErrorCode Assembler::diagnostics(const AssemblyContext &ctx, Vec x, EnergyParts *energy, PetscReal *maxViolation,
+                                      DampingForces *forces)
 {
   PetscFunctionBeginUser;
   PetscCall(beginLocal(ctx, x));
   EnergyParts e;
   double viol = 0;
   ItemValues vals;
+  if (forces) startDampingForces(forces);
   for (std::size_t k = 0; k < items_.size(); ++k) {
     gather(k, vals);
     items_[k]->energy(ctx, vals, e);
     viol = std::max(viol, items_[k]->constraintViolation(ctx, vals));
+    if (forces) addDampingForce(k, vals, forces);
   }
+  if (forces) forces->f.resize(forces->used);
   PetscCall(endLocal());
   double sums[6] = {e.kinetic, e.strain, e.potential, e.inputPower, e.roundoff, e.dissipation}, global[6];
   PetscCallMPI(MPI_Allreduce(sums, global, 6, MPI_DOUBLE, MPI_SUM, comm_));
@@ -352,6 +356,28 @@ PetscErrorCode Assembler::diagnostics(const AssemblyContext &ctx, Vec x, EnergyP
   PetscFunctionReturn(0);
 }
 
+// The force array is sized for every item's coordinates once per pass (a
+// resize per item was a call into the vector's growth path for each of
+// them), filled by the items with damping forces and cut to what they used.
+void Assembler::startDampingForces(DampingForces *forces) const
+{
+  forces->items.clear(), forces->first.clear();
+  forces->used = 0;
+  std::size_t total = 0;
+  for (int n : itemCoords_) total += static_cast<std::size_t>(n);
+  forces->f.resize(total);
+}
+
+void Assembler::addDampingForce(std::size_t k, const ItemValues &vals, DampingForces *forces) const
+{
+  const std::size_t first = forces->used;
+  if (items_[k]->dampingForce(vals, forces->f.data() + first)) {
+    forces->items.push_back(k);
+    forces->first.push_back(static_cast<int>(first));
+    forces->used = first + static_cast<std::size_t>(itemCoords_[k]);
+  }
+}
+
 PetscErrorCode Assembler::dampingForces(Vec q, Vec v, DampingForces *forces)
 {
   PetscFunctionBeginUser;
@@ -360,19 +386,13 @@ PetscErrorCode Assembler::dampingForces(Vec q, Vec v, DampingForces *forces)
   ctx.kin = {1.0, 0.0, 0.0};
   PetscCall(setOffsets(nullptr, v, nullptr));
   PetscCall(beginLocal(ctx, q));
-  forces->items.clear(), forces->first.clear(), forces->f.clear();
+  startDampingForces(forces);
   ItemValues vals;
   for (std::size_t k = 0; k < items_.size(); ++k) {
     gather(k, vals);
-    const std::size_t first = forces->f.size();
-    forces->f.resize(first + itemCoords_[k]);
-    if (items_[k]->dampingForce(vals, forces->f.data() + first)) {
-      forces->items.push_back(k);
-      forces->first.push_back(static_cast<int>(first));
-    } else {
-      forces->f.resize(first);
-    }
+    addDampingForce(k, vals, forces);
   }
+  forces->f.resize(forces->used);
   PetscCall(endLocal());
   PetscFunctionReturn(0);
 }
@@ -386,21 +406,20 @@ PetscErrorCode Assembler::dampingWork(const DampingForces *const forces[], int c
       for (int j = 0; j < count; ++j) PetscCall(dampingWork(&forces[j], 1, dq, &work[j]));
       PetscFunctionReturn(0);
     }
-  // The increment as q (cQ = 1, no offsets).
+  // The increment's entries are read straight from the local values of dq
+  // (a gather with q = 0 + 1 dq gives the same numbers, and the v and a it
+  // would also form are not used); the offsets are left as they are.
   AssemblyContext ctx;
-  ctx.kin = {1.0, 0.0, 0.0};
-  PetscCall(setOffsets(nullptr, nullptr, nullptr));
   PetscCall(beginLocal(ctx, dq));
   std::vector<double> local(count, 0.0);
-  ItemValues vals;
   const DampingForces &layout = *forces[0];
   for (std::size_t i = 0; i < layout.items.size(); ++i) {
     const std::size_t k = layout.items[i];
-    gather(k, vals);
+    const PetscInt *li = itemLocal_.data() + itemStart_[k];
     for (int s = 0; s < count; ++s) {
       const double *f = forces[s]->f.data() + layout.first[i];
       double itemWork = 0; // per item, then summed: the order of the sums before
-      for (int j = 0; j < itemCoords_[k]; ++j) itemWork += vals.q[j] * f[j];
+      for (int j = 0; j < itemCoords_[k]; ++j) itemWork += xl_[li[j]] * f[j];
       local[s] += itemWork;
     }
   }

@@ -4,6 +4,7 @@
 // the end.
 #include "boomdyn/simulation.hpp"
 
+#include "boomdyn/monitors.hpp"
 #include "boomdyn/schema.hpp"
 #include "boomdyn/slider_tracker.hpp"
 
@@ -20,7 +21,10 @@ PetscErrorCode Simulation::dynamicState(RunState *state)
   state->q = integrator_->positions();
   state->v = integrator_->velocities();
   state->lambda = integrator_->multipliers();
-  PetscCall(integrator_->diagnostics(&state->energy, &violation));
+  // The energy check's damping forces come from the same pass as the energy.
+  const bool forces = energy_ && energy_->wantsDampingForces();
+  PetscCall(integrator_->diagnostics(&state->energy, &violation, true, forces ? &dampingForces_ : nullptr));
+  state->dampingForces = forces ? &dampingForces_ : nullptr;
   state->violation = violation;
   state->stepper = &stepper_;
   PetscFunctionReturn(0);

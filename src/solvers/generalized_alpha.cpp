@@ -417,7 +417,8 @@ PetscErrorCode GeneralizedAlpha::restore(const StateReader &in)
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode GeneralizedAlpha::diagnostics(EnergyParts *energy, PetscReal *violation, bool rightLimit)
+PetscErrorCode GeneralizedAlpha::diagnostics(EnergyParts *energy, PetscReal *violation, bool rightLimit,
+                                             Assembler::DampingForces *forces)
 {
   PetscFunctionBeginUser;
   AssemblyContext ctx;
@@ -429,13 +430,13 @@ PetscErrorCode GeneralizedAlpha::diagnostics(EnergyParts *energy, PetscReal *vio
   // of q_ with the unscaled multipliers (qp_ is free between steps).
   PetscCall(assembler_.setOffsets(nullptr, v_, nullptr));
   if (!hasDrives_) {
-    PetscCall(assembler_.diagnostics(ctx, q_, energy, violation));
+    PetscCall(assembler_.diagnostics(ctx, q_, energy, violation, forces));
     if (energy) energy->impulseWork = impulseWork_;
     PetscFunctionReturn(0);
   }
   PetscCall(VecCopy(q_, qp_));
   PetscCall(assembler_.copyMultipliers(lambda_, qp_, 1.0));
-  PetscCall(assembler_.diagnostics(ctx, qp_, energy, violation));
+  PetscCall(assembler_.diagnostics(ctx, qp_, energy, violation, forces));
   if (energy) energy->impulseWork = impulseWork_;
   PetscFunctionReturn(0);
 }
