@@ -68,8 +68,11 @@ double dampingForce(const Section &sec, double l, const Vec8 &e, const Vec8 &edo
 
 // internalForce(sec, l, e, f, nullptr) and dampingForce(sec, l, e, edot, fd,
 // nullptr, nullptr) in one pass (shared shape functions and strains), with
-// bit-identical results: the residual of a damped element.
-void internalAndDampingForce(const Section &sec, double l, const Vec8 &e, const Vec8 &edot, Vec8 &f, Vec8 &fd);
+// bit-identical results: the residual of a damped element. Returns the
+// dissipated power, dampingForce's return value bit for bit (a few
+// operations per Gauss point: the element keeps it with fd for the energy
+// diagnostics of the state Newton ends on).
+double internalAndDampingForce(const Section &sec, double l, const Vec8 &e, const Vec8 &edot, Vec8 &f, Vec8 &fd);
 
 // Axial strain and material curvature at xi (for output and tests).
 double axialStrain(const Vec8 &e, double xi, double l);

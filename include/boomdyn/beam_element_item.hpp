@@ -31,9 +31,10 @@ private:
   // Kelvin-Voigt damping force into the residual, D (times cV) and dfd/dq (times cQ) into J.
   void addDamping(const AssemblyContext &ctx, const ItemValues &in, double *residual, double *J) const;
 
-  // Damping force and dissipated power at (q, v), kept for the last state:
-  // after every step the energy diagnostics (energy()) and the energy check
-  // (dampingForce()) ask for the same state.
+  // Damping force and dissipated power at (q, v), kept for the last state
+  // (also by the residual of a damped element, evaluate()): after every step
+  // the energy diagnostics (energy()) and the energy check (dampingForce())
+  // ask for the state of Newton's last residual.
   double dampingAt(const ItemValues &in, ancf::Vec8 &fd) const;
   struct DampingMemo {
     bool valid = false;

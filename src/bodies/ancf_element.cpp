@@ -531,7 +531,7 @@ double dampingForce(const Section &sec, double l, const Vec8 &e, const Vec8 &edo
   return power;
 }
 
-void internalAndDampingForce(const Section &sec, double l, const Vec8 &e, const Vec8 &edot, Vec8 &f, Vec8 &fd)
+double internalAndDampingForce(const Section &sec, double l, const Vec8 &e, const Vec8 &edot, Vec8 &f, Vec8 &fd)
 {
   // internalForce(.., nullptr) and dampingForce(.., nullptr, nullptr) in one
   // pass: the shape functions, r', r'' and the axial projection are shared.
@@ -543,6 +543,7 @@ void internalAndDampingForce(const Section &sec, double l, const Vec8 &e, const 
   const double EAproj = (1.0 - proj.gamma) * sec.EA;
   const double cproj = (1.0 - proj.gamma) * sec.EA * sec.etaA * l;
   Vec8 fl = Vec8::Zero(), fdl = Vec8::Zero(); // local accumulators: f, fd may alias e or edot
+  double power = 0;
   for (int p = 0; p < g.size; ++p) {
     const QuadPoint &q = g.points[p];
     const Eigen::Vector4d &s1 = shapes.s1[p], &s2 = shapes.s2[p];
@@ -562,13 +563,18 @@ void internalAndDampingForce(const Section &sec, double l, const Vec8 &e, const 
     const double ca = wx * proj.gamma * sec.EA * sec.etaA * q.axial, cb = wx * sec.EI * sec.etaB * q.bending;
     const double epsdot = r1.dot(r1d);
     const double Kdot = (cross(r1d, r2) + cross(r1, r2d) - 2.0 * K * epsdot) * iJ2;
+    power += ca * epsdot * epsdot + cb * Kdot * Kdot;
     const double bK = cb * Kdot * iJ2;
     const Vec2 u1 = (ca * epsdot) * r1 + bK * (rotCW(r2) - (2.0 * K) * r1), u2 = bK * rotCW(r1);
     for (int k = 0; k < 4; ++k) fdl.segment<2>(2 * k) += s1[k] * u1 - s2[k] * u2;
   }
-  for (int j = 0; j < proj.n; ++j) fdl += (cproj * proj.alphaDot[j]) * proj.grad[j];
+  for (int j = 0; j < proj.n; ++j) {
+    fdl += (cproj * proj.alphaDot[j]) * proj.grad[j];
+    power += cproj * proj.alphaDot[j] * proj.alphaDot[j];
+  }
   f = fl;
   fd = fdl;
+  return power;
 }
 
 Vec8 straightElement(const Vec2 &p0, const Vec2 &dir, double l)

@@ -91,9 +91,14 @@ void BeamElementItem::evaluate(const AssemblyContext &ctx, const ItemValues &in,
     // points, bit-identical to internalForce + addDamping below.
     const Eigen::Map<const ancf::Vec8> v(in.v);
     ancf::Vec8 fd;
-    ancf::internalAndDampingForce(sec, l, q, v, f, fd);
+    const double power = ancf::internalAndDampingForce(sec, l, q, v, f, fd);
     inertiaAndForces(in.a, f, ctx.loadFactor, residual);
     r += fd;
+    // Kept for dampingAt: the last residual of a converged step is
+    // evaluated at the state the step ends on, whose energy diagnostics and
+    // energy check then need these forces again.
+    DampingMemo &m = dampingMemo_;
+    m.q = q, m.v = v, m.fd = fd, m.power = power, m.valid = true;
     return;
   }
   if (J && ctx.kin.cQ != 0.0) {

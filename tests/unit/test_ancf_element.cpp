@@ -171,3 +171,37 @@ TEST(AncfElement, ForceOnlyPathIsBitIdentical)
   internalForce(kSteelBox, 0.25, e, e, nullptr);
   for (int k = 0; k < 8; ++k) EXPECT_EQ(e[k], f[k]);
 }
+
+// The damped residual's one-pass kernel must give internalForce's force,
+// dampingForce's force and dampingForce's dissipated power bit for bit: the
+// element keeps its force and power for the energy diagnostics of the state
+// Newton ends on (BeamElementItem::dampingAt), which would otherwise call
+// dampingForce, and the energy balance and the digests must not depend on
+// which of the two computed them.
+TEST(AncfElement, InternalAndDampingForceIsBitIdentical)
+{
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> rate(-1.0, 1.0);
+  for (AxialIntegration axial : {AxialIntegration::Full, AxialIntegration::Reduced, AxialIntegration::Assumed})
+    for (double beamLength : {0.0, 100.0}) {
+      Section sec = kSteelBox;
+      sec.axialIntegration = axial;
+      sec.length = beamLength;
+      sec.etaA = 1e-3, sec.etaB = 2e-3;
+      for (double l : {0.25, 1e-3})
+        for (int trial = 0; trial < 50; ++trial) {
+          const Vec8 e = deformedState(rng, l, trial % 2 ? 0.2 : 1e-4);
+          Vec8 edot;
+          for (int k = 0; k < 8; ++k) edot[k] = rate(rng);
+          Vec8 f1, fd1, f2, fd2;
+          const double p1 = internalAndDampingForce(sec, l, e, edot, f1, fd1);
+          internalForce(sec, l, e, f2, nullptr);
+          const double p2 = dampingForce(sec, l, e, edot, fd2, nullptr, nullptr);
+          EXPECT_EQ(p1, p2) << "axial " << static_cast<int>(axial) << ", L " << beamLength << ", l " << l;
+          for (int k = 0; k < 8; ++k) {
+            EXPECT_EQ(f1[k], f2[k]) << "axial " << static_cast<int>(axial) << ", entry " << k;
+            EXPECT_EQ(fd1[k], fd2[k]) << "axial " << static_cast<int>(axial) << ", entry " << k;
+          }
+        }
+    }
+}
