@@ -96,6 +96,9 @@ private:
   std::size_t sampledPoints_ = 0, sampledSegments_ = 0, ropePoints_ = 0, ropeSegments_ = 0;
   std::vector<DrawnRope> ropes_; // drawn at every snapshot (rope_polylines.hpp)
   long long eventCount_ = 0, typeEventCount_ = 0;
+  // /sensors/<name>/position and /velocity of every sensor, spelled once
+  // (not two new strings per sensor and step).
+  std::vector<std::string> sensorPaths_;
   std::chrono::steady_clock::time_point lastFlush_ = std::chrono::steady_clock::now(), lastXdmf_ = lastFlush_;
 };
 

@@ -105,6 +105,7 @@ struct Series {
   hid_t memType = H5I_INVALID_HID;
   int rank = 2;
   std::size_t ncols = 0;
+  std::size_t rowBytes = 0; // ncols * the memory type's size
   hsize_t rows = 0;        // rows in the file
   hsize_t pendingRows = 0; // rows in `pending`
   std::vector<char> pending;
@@ -303,6 +304,7 @@ struct Hdf5File::Impl {
     s.memType = memType;
     s.rank = rank;
     s.ncols = ncols;
+    s.rowBytes = rowBytes;
     s.chunkBytes = double(chunkRows) * double(rank == 2 ? chunkCols : 1) * double(H5Tget_size(memType));
     return series.emplace(dataset, std::move(s)).first->second;
   }
@@ -310,15 +312,26 @@ struct Hdf5File::Impl {
   void append(const std::string &datasetPath, const void *row, std::size_t ncols, hid_t fileType, hid_t memType,
               int rank)
   {
-    const std::string dataset = normalizePath(datasetPath);
-    if (!row || ncols == 0)
-      throw std::runtime_error("HDF5 file '" + path + "': empty row appended to '" + dataset + "'");
-    Series &s = findOrCreateSeries(dataset, fileType, memType, rank, ncols);
-    const std::size_t rowBytes = ncols * H5Tget_size(memType);
+    // A path that is a key of `series` is in its normal spelling already
+    // (keys are normalized): every append after a series' first finds it
+    // here, without normalizing the path again (a new string per row, most
+    // of the cost of the per-step rows).
+    auto found = series.find(datasetPath);
+    if (found == series.end() || !row || ncols == 0) {
+      const std::string dataset = normalizePath(datasetPath);
+      if (!row || ncols == 0)
+        throw std::runtime_error("HDF5 file '" + path + "': empty row appended to '" + dataset + "'");
+      findOrCreateSeries(dataset, fileType, memType, rank, ncols);
+      found = series.find(dataset);
+    }
+    Series &s = found->second;
+    if (s.memType != memType || s.rank != rank || s.ncols != ncols)
+      throw std::runtime_error("HDF5 file '" + path + "': appending to '" + found->first +
+                               "' with another shape or type than it was created with");
     const char *bytes = static_cast<const char *>(row);
-    s.pending.insert(s.pending.end(), bytes, bytes + rowBytes);
+    s.pending.insert(s.pending.end(), bytes, bytes + s.rowBytes);
     ++s.pendingRows;
-    if (s.pendingRows >= kBlockRows) writePending(dataset, s);
+    if (s.pendingRows >= kBlockRows) writePending(found->first, s);
   }
 
   // Writes the buffered rows of one series as one block.

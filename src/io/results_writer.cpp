@@ -215,10 +215,17 @@ void ResultsWriter::appendStepRow(double t, double dt, PetscInt iterations, doub
   file_->appendScalar("/steps/constraint_violation", violation);
   const double energy[4] = {e.kinetic, e.strain, e.potential, e.kinetic + e.strain + e.potential};
   file_->appendRow("/steps/energy", energy, 4);
+  if (sensorPaths_.size() != 2 * sensors.size()) {
+    sensorPaths_.clear();
+    for (std::size_t i = 0; i < sensors.size(); ++i) {
+      const std::string base = "/sensors/" + model_.sensors()[i].name;
+      sensorPaths_.push_back(base + "/position");
+      sensorPaths_.push_back(base + "/velocity");
+    }
+  }
   for (std::size_t i = 0; i < sensors.size(); ++i) {
-    const std::string base = "/sensors/" + model_.sensors()[i].name;
-    file_->appendRow(base + "/position", sensors[i].position.data(), 2);
-    file_->appendRow(base + "/velocity", sensors[i].velocity.data(), 2);
+    file_->appendRow(sensorPaths_[2 * i], sensors[i].position.data(), 2);
+    file_->appendRow(sensorPaths_[2 * i + 1], sensors[i].velocity.data(), 2);
   }
   // Flush every couple of seconds so that a crash keeps the rows written so far.
   const auto now = std::chrono::steady_clock::now();
@@ -407,6 +414,7 @@ PetscErrorCode ResultsWriter::appendTypeEvents(const std::vector<TypeEvent> &eve
 {
   PetscFunctionBeginUser;
   PetscCall(onRankZero(comm_, rank_, [&] {
+    if (events.empty()) return; // most steps: no name lists to build
     const std::vector<std::string> names = eventComponents(model_), kinds = eventKinds(model_);
     for (const TypeEvent &e : events) {
       file_->appendScalar("/type_events/time", e.t);
