@@ -14,6 +14,7 @@
 
 #include <petscvec.h>
 
+#include <array>
 #include <chrono>
 #include <memory>
 #include <string>
@@ -99,6 +100,14 @@ private:
   // /sensors/<name>/position and /velocity of every sensor, spelled once
   // (not two new strings per sensor and step).
   std::vector<std::string> sensorPaths_;
+  // XDMF grids of the first xdmfGrids_ snapshots (booms, ropes), for the
+  // sampled sizes in xdmfShape_ (writeXdmf adds the new snapshots' only).
+  mutable std::string xdmfBooms_, xdmfRopes_;
+  mutable std::size_t xdmfGrids_ = 0;
+  mutable std::array<std::size_t, 4> xdmfShape_ = {0, 0, 0, 0};
+  // writeSampledBooms' arrays, kept between snapshots (no allocations per snapshot).
+  std::vector<double> samplePoints_, sampleVelocity_, sampleStrain_, sampleCurvature_, sampleRopePoints_;
+  std::vector<int> sampleSegments_, sampleRopeSegments_;
   std::chrono::steady_clock::time_point lastFlush_ = std::chrono::steady_clock::now(), lastXdmf_ = lastFlush_;
 };
 

@@ -29,10 +29,12 @@ std::vector<DrawnRope> drawnRopes(const Model &model);
 void ropePolylines(const std::vector<DrawnRope> &ropes, const std::vector<double> &q, std::vector<double> &points,
                    std::vector<int> &segments);
 
-// Writes the XDMF file `path`: the temporal collection of the rope polylines
-// at the snapshots at `times` (h5: the results file's name relative to the
-// XDMF file). Throws std::runtime_error when it cannot be written.
-void writeRopesXdmf(const std::string &path, const std::string &h5, const std::string &title,
-                    const std::vector<double> &times, std::size_t points, std::size_t segments);
+// The XDMF grid of the rope polylines of snapshot k at `time` (h5: the
+// results file's name relative to the XDMF file).
+std::string ropesXdmfGrid(const std::string &h5, std::size_t k, double time, std::size_t points, std::size_t segments);
+// Writes the XDMF file `path`: the temporal collection of the grids given
+// (ropesXdmfGrid, snapshot after snapshot). Throws std::runtime_error when
+// it cannot be written.
+void writeRopesXdmf(const std::string &path, const std::string &title, const std::string &grids);
 
 } // namespace boomdyn

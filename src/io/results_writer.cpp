@@ -7,6 +7,7 @@
 #include "xdmf_text.hpp"
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <ctime>
 #include <cstdio>
@@ -281,8 +282,10 @@ static constexpr int kSamplesPerElement = 4;
 
 void ResultsWriter::writeSampledBooms(double t, const std::vector<double> &q, const std::vector<double> &v)
 {
-  std::vector<double> points, velocity, strain, curvature;
-  std::vector<int> segments;
+  std::vector<double> &points = samplePoints_, &velocity = sampleVelocity_, &strain = sampleStrain_,
+                      &curvature = sampleCurvature_;
+  std::vector<int> &segments = sampleSegments_;
+  points.clear(), velocity.clear(), strain.clear(), curvature.clear(), segments.clear();
   for (const auto &body : model_.bodies()) {
     const auto *beam = dynamic_cast<const AncfBeam *>(body.get());
     const int elements = beam ? beam->numElements() : 1, perElement = beam ? kSamplesPerElement : 1;
@@ -297,11 +300,11 @@ void ResultsWriter::writeSampledBooms(double t, const std::vector<double> &q, co
       body->sample(loc, s, vals, p);
       const Vec2 r1 = p.r[1], r2 = p.r[2];
       const Vec2 vel = p.r_q[0].leftCols(loc.count) * Eigen::Map<const Eigen::VectorXd>(vels, loc.count);
-      points.insert(points.end(), {p.r[0].x(), p.r[0].y(), 0.0});
-      velocity.insert(velocity.end(), {vel.x(), vel.y(), 0.0});
+      points.push_back(p.r[0].x()), points.push_back(p.r[0].y()), points.push_back(0.0);
+      velocity.push_back(vel.x()), velocity.push_back(vel.y()), velocity.push_back(0.0);
       strain.push_back(0.5 * (r1.squaredNorm() - 1.0));                             // Green axial strain
       curvature.push_back((r1.x() * r2.y() - r1.y() * r2.x()) / r1.squaredNorm()); // material curvature
-      if (k > 0) segments.insert(segments.end(), {first + k - 1, first + k});
+      if (k > 0) segments.push_back(first + k - 1), segments.push_back(first + k);
     }
   }
   const std::size_t np = points.size() / 3, ns = segments.size() / 2;
@@ -311,8 +314,8 @@ void ResultsWriter::writeSampledBooms(double t, const std::vector<double> &q, co
     {"points", &points, {np, 3}}, {"velocity", &velocity, {np, 3}}, {"axial_strain", &strain, {np}},
     {"curvature", &curvature, {np}}};
   // The ropes as polylines through their pulleys (rope_polylines.hpp).
-  std::vector<double> ropePoints;
-  std::vector<int> ropeSegments;
+  std::vector<double> &ropePoints = sampleRopePoints_;
+  std::vector<int> &ropeSegments = sampleRopeSegments_;
   ropePolylines(ropes_, q, ropePoints, ropeSegments);
   if (!ropeSegments.empty()) {
     if (snapshotTimes_.empty()) file_->writeArray("/paraview/rope_segments", ropeSegments, {ropeSegments.size() / 2, 2});
@@ -330,9 +333,13 @@ void ResultsWriter::writeXdmf() const
   const std::string xmf = (path_.size() > 3 && path_.compare(path_.size() - 3, 3, ".h5") == 0 ? path_.substr(0, path_.size() - 3) : path_) + ".xmf";
   const std::string h5 = path_.substr(path_.find_last_of('/') == std::string::npos ? 0 : path_.find_last_of('/') + 1);
   const std::string np = std::to_string(sampledPoints_);
-  std::string text = xdmf::collectionBegin(model_.scene().name);
-  for (std::size_t k = 0; k < snapshotTimes_.size(); ++k) {
+  // The grids of the snapshots described before are kept: only the new ones
+  // are formed (the whole text at every rewrite grew with the snapshots).
+  const std::array<std::size_t, 4> shape = {sampledPoints_, sampledSegments_, ropePoints_, ropeSegments_};
+  if (shape != xdmfShape_) xdmfBooms_.clear(), xdmfRopes_.clear(), xdmfGrids_ = 0, xdmfShape_ = shape;
+  for (std::size_t k = xdmfGrids_; k < snapshotTimes_.size(); ++k) {
     const std::string g = h5 + ":/paraview/" + std::to_string(k);
+    std::string &text = xdmfBooms_;
     text += xdmf::polylineGridBegin("booms", snapshotTimes_[k], sampledSegments_, sampledPoints_,
                                     h5 + ":/paraview/segments", g + "/points");
     for (const char *field : {"axial_strain", "curvature"})
@@ -342,11 +349,11 @@ void ResultsWriter::writeXdmf() const
     text += "    <Attribute Name=\"velocity\" AttributeType=\"Vector\" Center=\"Node\">\n     <DataItem Dimensions=\"" + np +
             " 3\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">" + g + "/velocity</DataItem>\n    </Attribute>\n" +
             "   </Grid>\n";
+    if (ropeSegments_ > 0) xdmfRopes_ += ropesXdmfGrid(h5, k, snapshotTimes_[k], ropePoints_, ropeSegments_);
   }
-  xdmf::writeFileReplacing(xmf, text + xdmf::collectionEnd());
-  if (ropeSegments_ > 0)
-    writeRopesXdmf(xmf.substr(0, xmf.size() - 4) + ".ropes.xmf", h5, model_.scene().name, snapshotTimes_, ropePoints_,
-                   ropeSegments_);
+  xdmfGrids_ = snapshotTimes_.size();
+  xdmf::writeFileReplacing(xmf, xdmf::collectionBegin(model_.scene().name) + xdmfBooms_ + xdmf::collectionEnd());
+  if (ropeSegments_ > 0) writeRopesXdmf(xmf.substr(0, xmf.size() - 4) + ".ropes.xmf", model_.scene().name, xdmfRopes_);
 }
 
 PetscErrorCode ResultsWriter::writeModes(double t, const ModalResult &modes)

@@ -41,15 +41,16 @@ void ropePolylines(const std::vector<DrawnRope> &ropes, const std::vector<double
   }
 }
 
-void writeRopesXdmf(const std::string &path, const std::string &h5, const std::string &title,
-                    const std::vector<double> &times, std::size_t points, std::size_t segments)
+std::string ropesXdmfGrid(const std::string &h5, std::size_t k, double time, std::size_t points, std::size_t segments)
 {
-  std::string text = xdmf::collectionBegin(title + " ropes");
-  for (std::size_t k = 0; k < times.size(); ++k)
-    text += xdmf::polylineGridBegin("ropes", times[k], segments, points, h5 + ":/paraview/rope_segments",
-                                    h5 + ":/paraview/" + std::to_string(k) + "/rope_points") +
-            "   </Grid>\n";
-  xdmf::writeFileReplacing(path, text + xdmf::collectionEnd());
+  return xdmf::polylineGridBegin("ropes", time, segments, points, h5 + ":/paraview/rope_segments",
+                                 h5 + ":/paraview/" + std::to_string(k) + "/rope_points") +
+         "   </Grid>\n";
+}
+
+void writeRopesXdmf(const std::string &path, const std::string &title, const std::string &grids)
+{
+  xdmf::writeFileReplacing(path, xdmf::collectionBegin(title + " ropes") + grids + xdmf::collectionEnd());
 }
 
 } // namespace boomdyn
