@@ -93,6 +93,7 @@ private:
   void gather(std::size_t k, ItemValues &vals);
   void startDampingForces(DampingForces *forces) const;
   void addDampingForce(std::size_t k, const ItemValues &vals, DampingForces *forces) const;
+  void takeDampingForce(std::size_t k, DampingForces *forces) const;
 
   const Model &model_;
   MPI_Comm comm_ = MPI_COMM_NULL;

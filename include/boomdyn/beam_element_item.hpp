@@ -18,6 +18,8 @@ public:
   void coordinates(std::vector<PetscInt> &dofs) const override;
   void evaluate(const AssemblyContext &ctx, const ItemValues &in, double *residual, double *J) const override;
   void energy(const AssemblyContext &ctx, const ItemValues &in, EnergyParts &e) const override;
+  bool energyAndDampingForce(const AssemblyContext &ctx, const ItemValues &in, EnergyParts &e,
+                             double *f) const override;
   void scales(const ItemValues &in, double &massDiag, double &stiffDiag, int &count) const override;
   bool physicalDamping() const override;
   bool dampingForce(const ItemValues &in, double *f) const override;
@@ -36,6 +38,8 @@ private:
   // the energy diagnostics (energy()) and the energy check (dampingForce())
   // ask for the state of Newton's last residual.
   double dampingAt(const ItemValues &in, ancf::Vec8 &fd) const;
+  // energy(), leaving the damping force in fd (damped sections; untouched otherwise).
+  void energyAt(const AssemblyContext &ctx, const ItemValues &in, EnergyParts &e, ancf::Vec8 &fd) const;
   struct DampingMemo {
     bool valid = false;
     ancf::Vec8 q, v, fd;

@@ -110,6 +110,16 @@ public:
   // without any. The energy balance takes their work along each step's own
   // increment (EnergyCheck, Assembler::dampingForces).
   virtual bool dampingForce(const ItemValues &, double * /*f*/) const { return false; }
+  // energy() and dampingForce() at one state in one call: the diagnostics
+  // after every step ask for both (Assembler::diagnostics with forces), and
+  // an item whose energy already forms its damping force (the dissipated
+  // power) need not form or look it up again.
+  virtual bool energyAndDampingForce(const AssemblyContext &ctx, const ItemValues &in, EnergyParts &e,
+                                     double *f) const
+  {
+    energy(ctx, in, e);
+    return dampingForce(in, f);
+  }
   // Contribution to a characteristic mass / stiffness (diagonal sums) used to scale multipliers.
   virtual void scales(const ItemValues &, double &massDiag, double &stiffDiag, int &count) const
   {

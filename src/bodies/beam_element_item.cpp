@@ -134,15 +134,28 @@ void BeamElementItem::addDamping(const AssemblyContext &ctx, const ItemValues &i
 
 void BeamElementItem::energy(const AssemblyContext &ctx, const ItemValues &in, EnergyParts &e) const
 {
+  ancf::Vec8 fd;
+  energyAt(ctx, in, e, fd);
+}
+
+bool BeamElementItem::energyAndDampingForce(const AssemblyContext &ctx, const ItemValues &in, EnergyParts &e,
+                                            double *f) const
+{
+  ancf::Vec8 fd;
+  energyAt(ctx, in, e, fd);
+  if (!beam_->section().damped()) return false;
+  Eigen::Map<ancf::Vec8>{f} = fd;
+  return true;
+}
+
+void BeamElementItem::energyAt(const AssemblyContext &ctx, const ItemValues &in, EnergyParts &e, ancf::Vec8 &fd) const
+{
   const Eigen::Map<const ancf::Vec8> q(in.q), v(in.v);
   e.kinetic += 0.5 * v.dot(massTimes(in.v));
   const ancf::Section &sec = beam_->section();
   const double l = beam_->elementLength(), u = ancf::strainEnergy(sec, l, q);
   e.strain += u;
-  if (sec.damped()) {
-    ancf::Vec8 fd;
-    e.dissipation += dampingAt(in, fd);
-  }
+  if (sec.damped()) e.dissipation += dampingAt(in, fd);
   // Round-off of the curvature eps |q| / l^2 and of the axial strain eps |q| / l,
   // entering U = l (EA eps^2 + EI kappa^2) / 2 to first order through the
   // strain present and to second order on their own.

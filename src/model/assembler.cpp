@@ -338,9 +338,10 @@ PetscErrorCode Assembler::diagnostics(const AssemblyContext &ctx, Vec x, EnergyP
   if (forces) startDampingForces(forces);
   for (std::size_t k = 0; k < items_.size(); ++k) {
     gather(k, vals);
-    items_[k]->energy(ctx, vals, e);
+    if (!forces) items_[k]->energy(ctx, vals, e);
+    else if (items_[k]->energyAndDampingForce(ctx, vals, e, forces->f.data() + forces->used))
+      takeDampingForce(k, forces);
     viol = std::max(viol, items_[k]->constraintViolation(ctx, vals));
-    if (forces) addDampingForce(k, vals, forces);
   }
   if (forces) forces->f.resize(forces->used);
   PetscCall(endLocal());
@@ -370,12 +371,15 @@ void Assembler::startDampingForces(DampingForces *forces) const
 
 void Assembler::addDampingForce(std::size_t k, const ItemValues &vals, DampingForces *forces) const
 {
-  const std::size_t first = forces->used;
-  if (items_[k]->dampingForce(vals, forces->f.data() + first)) {
-    forces->items.push_back(k);
-    forces->first.push_back(static_cast<int>(first));
-    forces->used = first + static_cast<std::size_t>(itemCoords_[k]);
-  }
+  if (items_[k]->dampingForce(vals, forces->f.data() + forces->used)) takeDampingForce(k, forces);
+}
+
+// Item k has written its damping forces at forces->f[used]: record them.
+void Assembler::takeDampingForce(std::size_t k, DampingForces *forces) const
+{
+  forces->items.push_back(k);
+  forces->first.push_back(static_cast<int>(forces->used));
+  forces->used += static_cast<std::size_t>(itemCoords_[k]);
 }
 
 PetscErrorCode Assembler::dampingForces(Vec q, Vec v, DampingForces *forces)
