@@ -56,6 +56,15 @@ std::string utcNow()
 
 } // namespace
 
+// The per-step series' paths, made once: a literal passed as a
+// std::string was a new string per row (on the heap for the longer names).
+namespace {
+const std::string kStepTime = "/steps/time", kStepDt = "/steps/dt", kStepIterations = "/steps/newton_iterations",
+                  kStepViolation = "/steps/constraint_violation", kStepEnergy = "/steps/energy",
+                  kStepSlack = "/steps/slack", kStepLambda = "/steps/lambda", kStepRopeTension = "/steps/rope_tension",
+                  kStepFrameDeflection = "/steps/frame_deflection", kStepOutputs = "/steps/outputs";
+} // namespace
+
 ResultsWriter::~ResultsWriter()
 {
   // Left without finish() (an error unwound the run): the rows written so far
@@ -197,12 +206,12 @@ PetscErrorCode ResultsWriter::appendJoints(const std::vector<double> &slacks, co
 {
   PetscFunctionBeginUser;
   PetscCall(onRankZero(comm_, rank_, [&] {
-    if (!slacks.empty()) file_->appendRow("/steps/slack", slacks.data(), slacks.size());
-    if (!multipliers.empty()) file_->appendRow("/steps/lambda", multipliers.data(), multipliers.size());
-    if (!ropeTensions.empty()) file_->appendRow("/steps/rope_tension", ropeTensions.data(), ropeTensions.size());
+    if (!slacks.empty()) file_->appendRow(kStepSlack, slacks.data(), slacks.size());
+    if (!multipliers.empty()) file_->appendRow(kStepLambda, multipliers.data(), multipliers.size());
+    if (!ropeTensions.empty()) file_->appendRow(kStepRopeTension, ropeTensions.data(), ropeTensions.size());
     if (!frameDeflections.empty())
-      file_->appendRow("/steps/frame_deflection", frameDeflections.data(), frameDeflections.size());
-    if (!outputs.empty()) file_->appendRow("/steps/outputs", outputs.data(), outputs.size());
+      file_->appendRow(kStepFrameDeflection, frameDeflections.data(), frameDeflections.size());
+    if (!outputs.empty()) file_->appendRow(kStepOutputs, outputs.data(), outputs.size());
   }));
   PetscFunctionReturn(0);
 }
@@ -210,12 +219,12 @@ PetscErrorCode ResultsWriter::appendJoints(const std::vector<double> &slacks, co
 void ResultsWriter::appendStepRow(double t, double dt, PetscInt iterations, double violation, const EnergyParts &e,
                                   const std::vector<SensorReading> &sensors)
 {
-  file_->appendScalar("/steps/time", t);
-  file_->appendScalar("/steps/dt", dt);
-  file_->appendScalarInt("/steps/newton_iterations", static_cast<int>(iterations));
-  file_->appendScalar("/steps/constraint_violation", violation);
+  file_->appendScalar(kStepTime, t);
+  file_->appendScalar(kStepDt, dt);
+  file_->appendScalarInt(kStepIterations, static_cast<int>(iterations));
+  file_->appendScalar(kStepViolation, violation);
   const double energy[4] = {e.kinetic, e.strain, e.potential, e.kinetic + e.strain + e.potential};
-  file_->appendRow("/steps/energy", energy, 4);
+  file_->appendRow(kStepEnergy, energy, 4);
   if (sensorPaths_.size() != 2 * sensors.size()) {
     sensorPaths_.clear();
     for (std::size_t i = 0; i < sensors.size(); ++i) {

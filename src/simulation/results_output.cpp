@@ -35,7 +35,7 @@ PetscErrorCode ResultsOutput::writeStepRow(const RunState &s)
 
 PetscErrorCode ResultsOutput::writeJoints(const RunState &s)
 {
-  std::vector<double> tensions;
+  std::vector<double> &tensions = tensions_;
   PetscFunctionBeginUser;
   PetscCall(sim_.sensors().readJoints(s.q, s.lambda, slacks_, multipliers_));
   PetscCall(sim_.sensors().readFrames(s.q, deflections_));
