@@ -274,10 +274,30 @@ def format_value(v):
     return str(v) if isinstance(v, int) else repr(float(v))
 
 
-def write_digest(path, entries, command):
+ISA_LINE = "# instruction set: "
+
+
+def build_isa(results):
+    """The instruction set of the build that wrote RESULTS, from its boomdyn_version
+    attribute ("0.1.0 (commit, x86-64-v3)"); versions without it were generic builds."""
+    with h5py.File(results, "r") as f:
+        version = _plain(f.attrs.get("boomdyn_version", ""))
+    m = re.search(r", ([^,()]+)\)$", version)
+    return m.group(1) if m else "generic"
+
+
+def stored_isa(path):
+    for line in Path(path).read_text(encoding="utf-8").splitlines():
+        if line.startswith(ISA_LINE):
+            return line[len(ISA_LINE):].split()[0]
+    return "generic"
+
+
+def write_digest(path, entries, command, isa):
     rtol, why = SCENE_RTOL.get(Path(path).stem, (RTOL, ""))
     lines = ["# boomdyn regression digest (tests/regression/digest.py; docs/verification.md)",
              f"# made by: {command}",
+             f"{ISA_LINE}{isa} (the build's BOOMDYN_ARCH; another instruction set moves results at round-off)",
              f"# compared with rtol {rtol:g}" + (f" ({why})" if why else "") +
              " relative to max(|value|, largest |value| of the key's family);",
              "# integers exactly (the Newton total within 5e-3). Regenerate after an intended change",
@@ -419,7 +439,7 @@ def main():
         if command is None:
             with h5py.File(args.results, "r") as f:
                 command = _plain(f.attrs.get("command_line", "?"))
-        write_digest(args.digest, new, command)
+        write_digest(args.digest, new, command, build_isa(args.results))
         print(f"digest: wrote {args.digest} ({len(new)} values)")
         return 0
     if not args.digest.exists():
@@ -438,6 +458,14 @@ def main():
               f"  /usr/bin/python3 {Path(__file__).resolve()} {args.results} {args.digest} --update\n"
               "(all scenes: BOOMDYN_DIGEST_UPDATE=1 ctest --test-dir build -L digest)\n"
               "and say in the commit message which numbers moved and by how much (docs/verification.md).")
+        made, this = stored_isa(args.digest), build_isa(args.results)
+        if made != this:
+            # FMA and vector widths round differently; Newton's tolerance lets
+            # that grow to about 1e-9 of a value, above RTOL in most scenes.
+            print(f"digest: note: the stored digest was made by a {made} build and this binary is a {this} build "
+                  "(boomdyn_version): results differ at round-off between instruction sets, which the dynamics "
+                  f"amplify; compare with a {made} build (cmake -DBOOMDYN_ARCH={made}) before concluding that "
+                  "results changed.")
         return 1
     print(f"digest: {args.results} matches {args.digest} ({len(stored)} values, rtol {rtol:g}; "
           "largest difference " + (f"{used:.1e} of its tolerance, in {key})" if key else "0)"))

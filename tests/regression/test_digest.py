@@ -63,12 +63,23 @@ def main():
     check(len(digest.compare(STORED, changed("state.q.norm", float("nan")))) == 1, "NaN fails")
     with tempfile.TemporaryDirectory() as tmp:
         path = Path(tmp) / "x.digest"
-        digest.write_digest(path, STORED, "build/boomdyn inputs/x.yaml -boom_quiet")
+        digest.write_digest(path, STORED, "build/boomdyn inputs/x.yaml -boom_quiet", "x86-64-v3")
         back = digest.read_digest(path)
         check(back == STORED and all(type(a[1]) is type(b[1]) for a, b in zip(back, STORED)),
               "write then read gives the same keys, values and integer/real kinds")
         check("# made by: build/boomdyn inputs/x.yaml -boom_quiet" in path.read_text(),
               "the header names the command")
+        check(digest.stored_isa(path) == "x86-64-v3", "the header names the build's instruction set")
+        old = Path(tmp) / "old.digest"
+        old.write_text("# boomdyn regression digest\nrun.steps.count 1000\n")
+        check(digest.stored_isa(old) == "generic", "a digest without the line was made by a generic build")
+        import h5py
+        for version, isa in (("0.1.0 (abc1234, x86-64-v3)", "x86-64-v3"), ("0.1.0 (abc1234-dirty, generic)", "generic"),
+                             ("0.1.0 (abc1234)", "generic")):
+            h5 = Path(tmp) / "r.h5"
+            with h5py.File(h5, "w") as f:
+                f.attrs["boomdyn_version"] = version
+            check(digest.build_isa(h5) == isa, f"boomdyn_version {version!r} is a {isa} build")
 
 
 if __name__ == "__main__":
