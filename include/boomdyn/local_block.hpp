@@ -41,6 +41,17 @@ public:
   PetscErrorCode multiply(Mat M, const Eigen::Ref<const Eigen::MatrixXd> &X, Eigen::Ref<Eigen::MatrixXd> Y);
   // x = solve(b) with the KSP (a factorization); *ok false when it failed.
   PetscErrorCode solve(KSP ksp, const double *b, double *x, bool *ok);
+  // out = X Y, or out += X Y with `add`, for local rows X (n x p) and a small
+  // Y (p x k) replicated on every rank: no communication. The refinements'
+  // combinations (Ritz vectors and their products, residuals) have p of 6 to
+  // 30 and k of 2 to 12, where Eigen's general product packs both operands
+  // and zero-fills the result first: measured (callgrind, n = 221) 43 500
+  // against 19 700 instructions at p = k = 6 and 148 000 against 131 000 at
+  // p = 25, k = 10. Here each result column is a sum of axpys, four columns
+  // of X per pass over it. One column (k = 1) goes to Eigen's gemv, which
+  // is faster there. X and out must not overlap.
+  static void combine(const Eigen::Ref<const Eigen::MatrixXd> &X, const Eigen::Ref<const Eigen::MatrixXd> &Y,
+                      Eigen::Ref<Eigen::MatrixXd> out, bool add = false);
   // Copies between a column and a Vec of the layout.
   PetscErrorCode toVec(const double *x, Vec v) const;
   PetscErrorCode fromVec(Vec v, double *x) const;

@@ -59,7 +59,7 @@ struct MultiplierFit {
     if (c.cols() == 0) PetscFunctionReturn(0);
     PetscCall(blocks->inner(c, r, &dots));
     a->noalias() = -gramInverse * dots;
-    r.noalias() += c * (*a);
+    LocalBlocks::combine(c, *a, r, true);
     PetscFunctionReturn(0);
   }
 
@@ -117,14 +117,16 @@ struct Subspace {
     // already, so the solver's round-off in C u, left alone, grows by the
     // cancellation (seen: 1e-4 relative, and spurious modes at 0.01 Hz):
     // the passes against V are against the c_i too.
-    double before, after;
-    PetscCall(against(v, false, &before));
+    Eigen::VectorXd norm;
+    PetscCall(blocks->columnNorms(v, &norm));
+    const double before = norm[0];
     if (!(before > 0) || !std::isfinite(before)) PetscFunctionReturn(0);
+    double after;
     // Against [c V] twice ("twice is enough"), a third time when the second
     // pass still cancelled (norm below 1/sqrt(2) of the last: Daniel, Gragg,
     // Kaufman and Stewart's test). The earlier version made two passes
     // against the c_i, two against V, two against the c_i and one against
-    // V (four and three) where this makes three and two, mostly.
+    // V (four and three) where this makes two and two, mostly.
     after = before;
     for (int pass = 0; pass < 3; ++pass) {
       const double last = after;
@@ -457,15 +459,16 @@ PetscErrorCode DampedModeRefiner::refine(double t, Vec q, Vec lambda, Mat K, Mat
     // the D and M terms as one product each with the combined coefficients.
     // x = V y itself is needed for the best iterate only (at the end).
     const auto KV = sub.KV.leftCols(sub.p), DV = sub.DV.leftCols(sub.p), MV = sub.MV.leftCols(sub.p);
+    // Tall times small: LocalBlocks::combine.
     Block KX(n, 2 * o), R(n, 2 * o);
-    KX.noalias() = KV * Y;
+    LocalBlocks::combine(KV, Y, KX);
     R = KX;
-    R.noalias() += DV * Dc;
-    R.noalias() += MV * Mc;
+    LocalBlocks::combine(DV, Dc, R, true);
+    LocalBlocks::combine(MV, Mc, R, true);
     // The fitted multipliers a add K e_i a_i = c a to K x as well.
     Eigen::MatrixXd a;
     PetscCall(multipliers.fit(R, &a));
-    if (a.size()) KX.noalias() += multipliers.c * a;
+    if (a.size()) LocalBlocks::combine(multipliers.c, a, KX, true);
     Eigen::VectorXd kn, rn;
     PetscCall(blocks_.columnNorms(KX, &kn));
     PetscCall(blocks_.columnNorms(R, &rn));
@@ -509,7 +512,7 @@ PetscErrorCode DampedModeRefiner::refine(double t, Vec q, Vec lambda, Mat K, Mat
       Y.col(k) = best[k].y.real().head(bestP), Y.col(count + k) = best[k].y.imag().head(bestP);
     }
     Block X(n, 2 * count);
-    X.noalias() = sub.V.leftCols(bestP) * Y;
+    LocalBlocks::combine(sub.V.leftCols(bestP), Y, X);
     if (multipliers.c.cols() > 0) {
       A.resize(multipliers.c.cols(), 2 * count);
       for (int k = 0; k < count; ++k) A.col(k) = best[k].ar, A.col(count + k) = best[k].ai;

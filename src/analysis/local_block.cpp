@@ -109,6 +109,33 @@ PetscErrorCode LocalBlocks::multiply(Mat M, const Eigen::Ref<const Eigen::Matrix
   PetscFunctionReturn(0);
 }
 
+void LocalBlocks::combine(const Eigen::Ref<const Eigen::MatrixXd> &X, const Eigen::Ref<const Eigen::MatrixXd> &Y,
+                          Eigen::Ref<Eigen::MatrixXd> out, bool add)
+{
+  const Eigen::Index p = X.cols(), k = Y.cols();
+  if (k == 1 || p == 0) {
+    if (!add) out.noalias() = X * Y;
+    else out.noalias() += X * Y;
+    return;
+  }
+  for (Eigen::Index c = 0; c < k; ++c) {
+    auto o = out.col(c);
+    Eigen::Index j = 0;
+    if (!add) { // the first terms written, not added to zeros
+      if (p >= 2) {
+        o = X.col(0) * Y(0, c) + X.col(1) * Y(1, c);
+        j = 2;
+      } else {
+        o = X.col(0) * Y(0, c);
+        j = 1;
+      }
+    }
+    for (; j + 4 <= p; j += 4)
+      o += X.col(j) * Y(j, c) + X.col(j + 1) * Y(j + 1, c) + X.col(j + 2) * Y(j + 2, c) + X.col(j + 3) * Y(j + 3, c);
+    for (; j < p; ++j) o += X.col(j) * Y(j, c);
+  }
+}
+
 PetscErrorCode LocalBlocks::solve(KSP ksp, const double *b, double *x, bool *ok)
 {
   KSPConvergedReason reason;

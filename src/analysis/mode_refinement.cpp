@@ -103,9 +103,10 @@ PetscErrorCode ModeRefiner::refine(double t, Vec q, Vec lambda, double target, i
     // The modes must be finite and non-negative (docs/model.md §5): anything
     // else goes to the full solve, which filters and reports.
     if (!theta.allFinite() || theta[0] < -1e-8 * std::abs(theta[m - 1])) break;
-    V.noalias() = W * Y;
-    BV.noalias() = BW * Y; // B V for the next iteration without products with B
-    AV.noalias() = AW * Y; // A V likewise, for the residuals and locked vectors
+    // Tall times small (LocalBlocks::combine: cheaper than Eigen's general product here).
+    LocalBlocks::combine(W, Y, V);
+    LocalBlocks::combine(BW, Y, BV); // B V for the next iteration without products with B
+    LocalBlocks::combine(AW, Y, AV); // A V likewise, for the residuals and locked vectors
     // r = A x - theta B x for the wanted pairs, from A V and B V.
     R.noalias() = AV.leftCols(count) - BV.leftCols(count) * theta.head(count).asDiagonal();
     PetscCall(blocks_.columnNorms(AV.leftCols(count), &an));

@@ -107,6 +107,42 @@ TEST_F(LocalBlocksTest, MultiplyEqualsMatMultAndLeavesTheWorkVectorsFree)
   }
 }
 
+TEST_F(LocalBlocksTest, BlockMultiplyEqualsMatMultColumnByColumn)
+{
+  // 1 to 7 columns: the passes of four, two and one column of the
+  // sequential path (on several ranks: MatMult per column).
+  const PetscInt n = blocks_.localSize();
+  for (int k = 1; k <= 7; ++k) {
+    Eigen::MatrixXd X(n, k), Y(n, k);
+    for (int j = 0; j < k; ++j) X.col(j) = V_.col(j % 3) * (1.0 + 0.25 * j);
+    ASSERT_EQ(blocks_.multiply(A_, X, Y), 0);
+    for (int j = 0; j < k; ++j) {
+      Eigen::VectorXd y(n);
+      ASSERT_EQ(blocks_.multiply(A_, X.col(j).data(), y.data()), 0);
+      for (PetscInt r = 0; r < n; ++r) EXPECT_NEAR(Y(r, j), y[r], 1e-13) << "k = " << k << ", column " << j;
+    }
+  }
+}
+
+TEST_F(LocalBlocksTest, CombineEqualsEigensProduct)
+{
+  const PetscInt n = blocks_.localSize();
+  for (int p : {1, 2, 3, 6, 9}) {
+    for (int k : {1, 2, 5}) {
+      Eigen::MatrixXd X(n, p), Y(p, k), out(n, k), sum(n, k);
+      for (int j = 0; j < p; ++j) X.col(j) = V_.col(j % 3) * (1.0 + 0.5 * j);
+      for (int j = 0; j < p; ++j)
+        for (int c = 0; c < k; ++c) Y(j, c) = std::cos(1.3 * j + 0.7 * c);
+      LocalBlocks::combine(X, Y, out);
+      const Eigen::MatrixXd expected = X * Y;
+      EXPECT_LE((out - expected).norm(), 1e-14 * (1.0 + expected.norm())) << "p = " << p << ", k = " << k;
+      sum = expected;
+      LocalBlocks::combine(X, Y, sum, true);
+      EXPECT_LE((sum - 2.0 * expected).norm(), 1e-14 * (1.0 + expected.norm())) << "add, p = " << p << ", k = " << k;
+    }
+  }
+}
+
 // Both paths of solve(): the factor applied directly (preonly + LU, MUMPS on
 // several ranks) and KSPSolve (GMRES), against KSPSolve on a Vec.
 void checkSolve(Mat A, Vec layout, LocalBlocks &blocks, const Eigen::MatrixXd &V, bool direct)
