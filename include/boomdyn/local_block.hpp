@@ -41,6 +41,11 @@ public:
   PetscErrorCode multiply(Mat M, const Eigen::Ref<const Eigen::MatrixXd> &X, Eigen::Ref<Eigen::MatrixXd> Y);
   // x = solve(b) with the KSP (a factorization); *ok false when it failed.
   PetscErrorCode solve(KSP ksp, const double *b, double *x, bool *ok);
+  // C = the columns first, ..., first + C.cols() - 1 of M (local rows), i.e.
+  // M times those unit vectors. For a sequential AIJ matrix read from its
+  // entries (each is its product with the unit vector exactly), otherwise
+  // by products with the unit vectors.
+  PetscErrorCode columns(Mat M, PetscInt first, Eigen::Ref<Eigen::MatrixXd> C);
   // out = X Y, or out += X Y with `add`, for local rows X (n x p) and a small
   // Y (p x k) replicated on every rank: no communication. The refinements'
   // combinations (Ritz vectors and their products, residuals) have p of 6 to
@@ -61,6 +66,7 @@ private:
   PetscMPIInt size_ = 1;
   PetscInt n_ = 0, lo_ = 0;
   PetscHandle<Vec> x_, y_; // work vectors without arrays of their own while in use
+  Eigen::Matrix<double, Eigen::Dynamic, 4, Eigen::RowMajor> rows4_; // four columns side by side (multiply())
 };
 
 } // namespace boomdyn

@@ -33,15 +33,11 @@ struct MultiplierFit {
 
   PetscErrorCode setUp(Mat K, LocalBlocks &b, PetscInt coordinates, PetscInt multipliers)
   {
-    const PetscInt n = b.localSize(), lo = b.firstRow();
-    Block E = Block::Zero(n, multipliers);
     PetscFunctionBeginUser;
     blocks = &b;
     nq = coordinates;
-    c.resize(n, multipliers);
-    for (PetscInt i = 0; i < multipliers; ++i)
-      if (nq + i - lo >= 0 && nq + i - lo < n) E(nq + i - lo, i) = 1.0;
-    PetscCall(b.multiply(K, E, c)); // the unit vectors as one block: one pass over K
+    c.resize(b.localSize(), multipliers);
+    PetscCall(b.columns(K, nq, c)); // K e_i: K's multiplier columns, read off its entries
     Eigen::MatrixXd G;
     PetscCall(b.inner(c, c, &G));
     if (multipliers > 0) gramInverse = Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd>(G).pseudoInverse();
@@ -122,16 +118,17 @@ struct Subspace {
     const double before = norm[0];
     if (!(before > 0) || !std::isfinite(before)) PetscFunctionReturn(0);
     double after;
-    // Against [c V] twice ("twice is enough"), a third time when the second
-    // pass still cancelled (norm below 1/sqrt(2) of the last: Daniel, Gragg,
-    // Kaufman and Stewart's test). The earlier version made two passes
-    // against the c_i, two against V, two against the c_i and one against
-    // V (four and three) where this makes two and two, mostly.
+    // Against [c V] until a pass no longer cancels (the norm stays above
+    // 1/sqrt(2) of the last: Daniel, Gragg, Kaufman and Stewart's test), at
+    // most three times: once for a vector mostly outside span V (the modes
+    // at the start), twice for the expansions ("twice is enough"). The
+    // earlier version made two passes against the c_i, two against V, two
+    // against the c_i and one against V (four and three) every time.
     after = before;
     for (int pass = 0; pass < 3; ++pass) {
       const double last = after;
       PetscCall(against(v, true, &after));
-      if (pass >= 1 && after >= M_SQRT1_2 * last) break;
+      if (after >= M_SQRT1_2 * last) break;
     }
     if (!(after > 1e-10 * before)) PetscFunctionReturn(0);
     v /= after;

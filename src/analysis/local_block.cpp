@@ -69,18 +69,18 @@ PetscErrorCode LocalBlocks::multiply(Mat M, const Eigen::Ref<const Eigen::Matrix
   const Eigen::Index xs = X.outerStride(), ys = Y.outerStride();
   Eigen::Index j = 0;
   // Four columns per pass: the entries and their column indices are loaded
-  // once for four products (the sums stay in registers).
+  // once for four products. The four columns are copied side by side (row
+  // major) first, so that the four x values of an entry are one 32-byte row
+  // and the four sums one register pair (2 x SSE2): about 3.3 instead of 4.3
+  // instructions per entry and column. Each column's sum is still formed in
+  // the order of the row's entries.
   for (; j + 4 <= k; j += 4) {
-    const double *x0 = X.col(j).data(), *x1 = x0 + xs, *x2 = x1 + xs, *x3 = x2 + xs;
-    double *y0 = Y.col(j).data(), *y1 = y0 + ys, *y2 = y1 + ys, *y3 = y2 + ys;
+    rows4_.resize(n_, 4);
+    rows4_ = X.middleCols(j, 4);
     for (PetscInt i = 0; i < rows; ++i) {
-      double s0 = 0, s1 = 0, s2 = 0, s3 = 0;
-      for (PetscInt e = ia[i]; e < ia[i + 1]; ++e) {
-        const double v = a[e];
-        const PetscInt c = ja[e];
-        s0 += v * x0[c], s1 += v * x1[c], s2 += v * x2[c], s3 += v * x3[c];
-      }
-      y0[i] = s0, y1[i] = s1, y2[i] = s2, y3[i] = s3;
+      Eigen::Array<double, 1, 4> s = Eigen::Array<double, 1, 4>::Zero();
+      for (PetscInt e = ia[i]; e < ia[i + 1]; ++e) s += a[e] * rows4_.row(ja[e]).array();
+      Y.row(i).segment<4>(j) = s.matrix();
     }
   }
   for (; j + 2 <= k; j += 2) {
@@ -106,6 +106,35 @@ PetscErrorCode LocalBlocks::multiply(Mat M, const Eigen::Ref<const Eigen::Matrix
   PetscCall(MatRestoreRowIJ(M, 0, PETSC_FALSE, PETSC_FALSE, &rows, &ia, &ja, &done));
   // As MatMult: 2 flops per nonzero and column (for -log_view).
   PetscCall(PetscLogFlops(2.0 * nonzeros * (double)k));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode LocalBlocks::columns(Mat M, PetscInt first, Eigen::Ref<Eigen::MatrixXd> C)
+{
+  PetscBool sequential;
+  const Eigen::Index k = C.cols();
+  PetscFunctionBeginUser;
+  PetscCall(PetscObjectTypeCompare((PetscObject)M, MATSEQAIJ, &sequential));
+  if (!sequential || C.rows() != n_) {
+    Eigen::MatrixXd E = Eigen::MatrixXd::Zero(n_, k);
+    for (Eigen::Index i = 0; i < k; ++i)
+      if (first + i - lo_ >= 0 && first + i - lo_ < n_) E(first + i - lo_, i) = 1.0;
+    PetscCall(multiply(M, E, C));
+    PetscFunctionReturn(0);
+  }
+  PetscInt rows;
+  const PetscInt *ia, *ja;
+  PetscBool done;
+  const PetscScalar *a;
+  PetscCall(MatGetRowIJ(M, 0, PETSC_FALSE, PETSC_FALSE, &rows, &ia, &ja, &done));
+  PetscCheck(done && rows == n_, PETSC_COMM_SELF, PETSC_ERR_PLIB, "LocalBlocks: no compressed rows of the matrix");
+  PetscCall(MatSeqAIJGetArrayRead(M, &a));
+  C.setZero();
+  for (PetscInt i = 0; i < rows; ++i)
+    for (PetscInt e = ia[i]; e < ia[i + 1]; ++e)
+      if (ja[e] >= first && ja[e] < first + (PetscInt)k) C(i, ja[e] - first) = a[e];
+  PetscCall(MatSeqAIJRestoreArrayRead(M, &a));
+  PetscCall(MatRestoreRowIJ(M, 0, PETSC_FALSE, PETSC_FALSE, &rows, &ia, &ja, &done));
   PetscFunctionReturn(0);
 }
 

@@ -124,6 +124,20 @@ TEST_F(LocalBlocksTest, BlockMultiplyEqualsMatMultColumnByColumn)
   }
 }
 
+TEST_F(LocalBlocksTest, ColumnsAreTheProductsWithUnitVectors)
+{
+  // Columns 5, 6, 7 of A: read off the entries on one rank, products with
+  // unit vectors on several; either way bitwise M e_i.
+  const PetscInt n = blocks_.localSize(), lo = blocks_.firstRow();
+  Eigen::MatrixXd C(n, 3), E = Eigen::MatrixXd::Zero(n, 3), expected(n, 3);
+  ASSERT_EQ(blocks_.columns(A_, 5, C), 0);
+  for (int i = 0; i < 3; ++i)
+    if (5 + i - lo >= 0 && 5 + i - lo < n) E(5 + i - lo, i) = 1.0;
+  for (int i = 0; i < 3; ++i) ASSERT_EQ(blocks_.multiply(A_, E.col(i).data(), expected.col(i).data()), 0);
+  for (int i = 0; i < 3; ++i)
+    for (PetscInt r = 0; r < n; ++r) EXPECT_EQ(C(r, i), expected(r, i)) << "row " << lo + r << ", column " << 5 + i;
+}
+
 TEST_F(LocalBlocksTest, CombineEqualsEigensProduct)
 {
   const PetscInt n = blocks_.localSize();
