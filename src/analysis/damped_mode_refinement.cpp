@@ -158,16 +158,22 @@ struct Subspace {
 
   // V^T W for the products W, updated from column `from` on (the columns
   // before it did not change: V only grows). Symmetric: K, D, M are.
+  // The block of the new columns with themselves as a symmetric product
+  // (its upper triangle, LocalBlocks::innerSymmetric), the one with the old
+  // columns as a full product.
   PetscErrorCode project(const Block &W, int from, Eigen::MatrixXd *P) const
   {
     Eigen::MatrixXd G;
     const int n = p - from;
     PetscFunctionBeginUser;
     P->conservativeResize(p, p);
-    PetscCall(blocks->inner(V.leftCols(p), W.middleCols(from, n), &G));
-    P->middleCols(from, n) = G;
-    P->block(from, 0, n, from) = G.topRows(from).transpose();
-    P->bottomRightCorner(n, n) = 0.5 * (P->bottomRightCorner(n, n) + P->bottomRightCorner(n, n).transpose()).eval();
+    if (from > 0) {
+      PetscCall(blocks->inner(V.leftCols(from), W.middleCols(from, n), &G));
+      P->block(0, from, from, n) = G;
+      P->block(from, 0, n, from) = G.transpose();
+    }
+    PetscCall(blocks->innerSymmetric(V.middleCols(from, n), W.middleCols(from, n), &G));
+    P->bottomRightCorner(n, n) = G;
     PetscFunctionReturn(0);
   }
 };

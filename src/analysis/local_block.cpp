@@ -27,6 +27,18 @@ PetscErrorCode LocalBlocks::inner(const Eigen::Ref<const Eigen::MatrixXd> &A,
   PetscFunctionReturn(0);
 }
 
+PetscErrorCode LocalBlocks::innerSymmetric(const Eigen::Ref<const Eigen::MatrixXd> &A,
+                                           const Eigen::Ref<const Eigen::MatrixXd> &B, Eigen::MatrixXd *G) const
+{
+  PetscFunctionBeginUser;
+  G->setZero(A.cols(), B.cols());
+  G->triangularView<Eigen::Upper>() = A.transpose() * B;
+  if (size_ > 1)
+    PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, G->data(), (PetscMPIInt)G->size(), MPI_DOUBLE, MPI_SUM, comm_));
+  G->triangularView<Eigen::StrictlyLower>() = G->transpose();
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode LocalBlocks::columnNorms(const Eigen::Ref<const Eigen::MatrixXd> &A, Eigen::VectorXd *norms) const
 {
   PetscFunctionBeginUser;

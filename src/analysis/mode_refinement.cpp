@@ -91,11 +91,10 @@ PetscErrorCode ModeRefiner::refine(double t, Vec q, Vec lambda, double target, i
     // The products as blocks: one pass over each matrix for four columns.
     PetscCall(blocks_.multiply(Ac_.get(), W.rightCols(m - locked), AW.rightCols(m - locked)));
     PetscCall(blocks_.multiply(Bc_.get(), W.rightCols(m - locked), BW.rightCols(m - locked)));
-    // Projected pencil (W^T A W, W^T B W), symmetrized against round-off.
-    PetscCall(blocks_.inner(W, AW, &GA));
-    PetscCall(blocks_.inner(W, BW, &GB));
-    GA = 0.5 * (GA + GA.transpose()).eval();
-    GB = 0.5 * (GB + GB.transpose()).eval();
+    // Projected pencil (W^T A W, W^T B W): symmetric, the upper triangles
+    // computed and mirrored (LocalBlocks::innerSymmetric).
+    PetscCall(blocks_.innerSymmetric(W, AW, &GA));
+    PetscCall(blocks_.innerSymmetric(W, BW, &GB));
     Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> rr(GA, GB);
     if (rr.info() != Eigen::Success) break; // W lost B-rank: let the full solve decide
     const Eigen::VectorXd theta = rr.eigenvalues(); // ascending

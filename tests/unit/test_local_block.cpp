@@ -91,6 +91,25 @@ TEST_F(LocalBlocksTest, InnerProductsAndNormsEqualPetscs)
   }
 }
 
+TEST_F(LocalBlocksTest, SymmetricInnerProductIsTheUpperTriangleMirrored)
+{
+  // A^T (S A) with S = diag(1 + r): symmetric; the upper triangle equals the
+  // full product's, the lower is its mirror image.
+  const PetscInt n = blocks_.localSize(), lo = blocks_.firstRow();
+  Eigen::MatrixXd SA = V_;
+  for (PetscInt r = 0; r < n; ++r) SA.row(r) *= 1.0 + 0.1 * (lo + r);
+  Eigen::MatrixXd G, full;
+  ASSERT_EQ(blocks_.innerSymmetric(V_, SA, &G), 0);
+  ASSERT_EQ(blocks_.inner(V_, SA, &full), 0);
+  ASSERT_EQ(G.rows(), 3);
+  ASSERT_EQ(G.cols(), 3);
+  for (int i = 0; i < 3; ++i)
+    for (int j = i; j < 3; ++j) {
+      EXPECT_NEAR(G(i, j), full(i, j), 1e-13 * full.norm()) << i << ", " << j;
+      EXPECT_EQ(G(j, i), G(i, j)) << i << ", " << j;
+    }
+}
+
 TEST_F(LocalBlocksTest, MultiplyEqualsMatMultAndLeavesTheWorkVectorsFree)
 {
   // Three products in a row: each must give its borrowed arrays back
