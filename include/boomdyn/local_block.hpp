@@ -5,9 +5,11 @@
 // made several hundred of them. Here a set of vectors of one layout is the
 // local rows of an Eigen column-major matrix (one column per vector): inner
 // products of whole blocks are one local product and, on more than one rank,
-// one MPI_Allreduce; combinations are local products; products with a PETSc
-// matrix and solves with a KSP go through two work Vecs that borrow a
-// column's memory (VecPlaceArray). Works on any rank count.
+// one MPI_Allreduce; combinations are local products (combine() for the
+// tall-times-small ones); products of a block with a sequential AIJ matrix
+// are one pass over its rows for four columns (multiply()), other products
+// with a PETSc matrix and solves with a KSP go through two work Vecs that
+// borrow a column's memory (VecPlaceArray). Works on any rank count.
 #pragma once
 
 #include "boomdyn/petsc_handle.hpp"
