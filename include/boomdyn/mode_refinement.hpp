@@ -4,7 +4,8 @@
 // pencil. Instead of a fresh Krylov-Schur solve, they are refined by subspace
 // iteration with shift-and-invert and Rayleigh-Ritz:
 //     W = (A - tau B)^{-1} B V,   (W^T A W) y = theta (W^T B W) y,   V <- W Y,
-// until every wanted Ritz pair has ||A x - theta B x|| <= tol ||A x||.
+// until every wanted Ritz pair has ||A x - theta B x|| <= tol ||A x||
+// (leading wanted pairs that met it are kept in W as they are: soft locking).
 // The pencil's matrices and the factorization of A - tau B are kept between
 // analyses: while the sparsity pattern holds (no contact point changed
 // element) only the values are assembled and refactored numerically.

@@ -24,86 +24,84 @@ using Block = Eigen::MatrixXd; // local rows of vectors of x's layout, one colum
 // q part this is the exact multiplier part.
 struct MultiplierFit {
   Block c; // K e_i, one column per multiplier
-  Eigen::MatrixXd gramInverse; // (c^T c)^+, once per analysis: a COD solve per call cost more than the rest
+  // (c^T c)^+, once per analysis: a COD solve per call cost more than the
+  // rest. c (c^T c)^+ c^T is the orthogonal projection onto span{c_i}, the
+  // range of C^T in the coordinate rows (Subspace::against).
+  Eigen::MatrixXd gramInverse;
   PetscInt nq = 0;
   LocalBlocks *blocks = nullptr;
 
   PetscErrorCode setUp(Mat K, LocalBlocks &b, PetscInt coordinates, PetscInt multipliers)
   {
-    const PetscInt n = b.localSize(), lo = b.firstRow();
-    Eigen::VectorXd e = Eigen::VectorXd::Zero(n);
     PetscFunctionBeginUser;
     blocks = &b;
     nq = coordinates;
-    c.resize(n, multipliers);
-    for (PetscInt i = 0; i < multipliers; ++i) {
-      const PetscInt row = nq + i - lo;
-      if (row >= 0 && row < n) e[row] = 1.0;
-      PetscCall(b.multiply(K, e.data(), c.col(i).data()));
-      if (row >= 0 && row < n) e[row] = 0.0;
-    }
+    c.resize(b.localSize(), multipliers);
+    PetscCall(b.columns(K, nq, c)); // K e_i: K's multiplier columns, read off its entries
     Eigen::MatrixXd G;
     PetscCall(b.inner(c, c, &G));
     if (multipliers > 0) gramInverse = Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd>(G).pseudoInverse();
     PetscFunctionReturn(0);
   }
 
-  // v <- v + c a with a = -(c^T c)^+ c^T v (column by column): what is left
-  // of v after its least-squares part in the span of the c_i; the a into *a.
-  PetscErrorCode subtractRange(Eigen::Ref<Block> v, Eigen::MatrixXd *a) const
+  // r <- r + c a with a = -(c^T c)^+ c^T r minimizing ||r|| (per column),
+  // the a into *a (empty without multipliers). The multiplier part of the
+  // Ritz vector x is x_mu + a (the subspace's multiplier parts are zero).
+  PetscErrorCode fit(Eigen::Ref<Block> r, Eigen::MatrixXd *a) const
   {
     Eigen::MatrixXd dots;
     PetscFunctionBeginUser;
-    PetscCall(blocks->inner(c, v, &dots));
-    a->noalias() = -gramInverse * dots;
-    v.noalias() += c * (*a);
-    PetscFunctionReturn(0);
-  }
-
-  // v orthogonal to every c_i (twice, for round-off): for a vector with zero
-  // multiplier part, the orthogonal projection of its coordinate part onto
-  // the null space of C (the c_i span the range of C^T).
-  PetscErrorCode projectOut(Eigen::Ref<Block> v) const
-  {
-    Eigen::MatrixXd a;
-    PetscFunctionBeginUser;
-    if (c.cols() == 0) PetscFunctionReturn(0);
-    for (int pass = 0; pass < 2; ++pass) PetscCall(subtractRange(v, &a));
-    PetscFunctionReturn(0);
-  }
-
-  // r <- r + c a and x_mu <- x_mu + a with a minimizing ||r|| (per column);
-  // the a into *a (empty without multipliers).
-  PetscErrorCode fit(Eigen::Ref<Block> r, Eigen::Ref<Block> x, Eigen::MatrixXd *a) const
-  {
-    const PetscInt n = blocks->localSize(), lo = blocks->firstRow();
-    PetscFunctionBeginUser;
     a->resize(0, 0);
     if (c.cols() == 0) PetscFunctionReturn(0);
-    PetscCall(subtractRange(r, a));
-    for (PetscInt i = 0; i < (PetscInt)c.cols(); ++i)
-      if (nq + i - lo >= 0 && nq + i - lo < n) x.row(nq + i - lo) += a->row(i);
+    PetscCall(blocks->inner(c, r, &dots));
+    a->noalias() = -gramInverse * dots;
+    LocalBlocks::combine(c, *a, r, true);
     PetscFunctionReturn(0);
+  }
+
+  // x_mu <- x_mu + a for the columns of x (the local multiplier rows).
+  void addMultipliers(Eigen::Ref<Block> x, const Eigen::MatrixXd &a) const
+  {
+    const PetscInt n = blocks->localSize(), lo = blocks->firstRow();
+    for (PetscInt i = 0; i < (PetscInt)a.rows(); ++i)
+      if (nq + i - lo >= 0 && nq + i - lo < n) x.row(nq + i - lo) += a.row(i);
   }
 };
 
 // The real subspace V (Euclidean-orthonormal columns, local rows of x's
 // layout) and the products of its columns with K, D, M; the first p columns
-// of each block are in use.
+// of V are in use, the first `multiplied` of KV, DV, MV.
 struct Subspace {
   Block V, KV, DV, MV;
-  int p = 0;
+  int p = 0, multiplied = 0;
   PetscInt firstMultiplierRow = 0;     // local rows from here on are multipliers
-  const MultiplierFit *null = nullptr; // projects onto the null space of C
+  const MultiplierFit *null = nullptr; // c: onto the null space of C
   LocalBlocks *blocks = nullptr;
 
-  // Orthonormalizes v against V (classical Gram-Schmidt, twice) and appends
-  // it unless it lies in span V to round-off.
-  PetscErrorCode append(Mat K, Mat D, Mat M, Eigen::VectorXd v)
+  // v - c (c^T c)^+ c^T v - V (V^T v): one classical Gram-Schmidt pass
+  // against span{c_i} (the range of C^T, MultiplierFit) and V together (V is
+  // orthogonal to the c_i), and its norm.
+  PetscErrorCode against(Eigen::Ref<Block> v, bool withV, double *norm) const
+  {
+    Eigen::MatrixXd dc, dv;
+    Eigen::VectorXd nv;
+    const bool constrained = null->c.cols() > 0;
+    PetscFunctionBeginUser;
+    if (constrained) PetscCall(blocks->inner(null->c, v, &dc));
+    if (withV && p > 0) PetscCall(blocks->inner(V.leftCols(p), v, &dv));
+    if (constrained) v.noalias() -= null->c * (null->gramInverse * dc);
+    if (withV && p > 0) v.noalias() -= V.leftCols(p) * dv;
+    PetscCall(blocks->columnNorms(v, &nv));
+    *norm = nv[0];
+    PetscFunctionReturn(0);
+  }
+
+  // Orthonormalizes v against V (classical Gram-Schmidt) and appends it
+  // unless it lies in span V to round-off. The products with K, D, M are
+  // made later for all new columns at once (multiply()).
+  PetscErrorCode append(Eigen::VectorXd v)
   {
     const PetscInt n = blocks->localSize();
-    Eigen::VectorXd norm;
-    Eigen::MatrixXd dots;
     PetscFunctionBeginUser;
     // Coordinate parts only: the multiplier parts drop out of the projection
     // (C v_q = 0) and are fitted to the Ritz vectors (MultiplierFit); kept,
@@ -113,22 +111,25 @@ struct Subspace {
     // meets no constraint stiffness in the projection (its multiplier part is
     // zero) and makes spurious soft modes. Expansions are mostly in span V
     // already, so the solver's round-off in C u, left alone, grows by the
-    // cancellation (seen: 1e-4 relative, and spurious modes at 0.01 Hz).
-    PetscCall(null->projectOut(v));
+    // cancellation (seen: 1e-4 relative, and spurious modes at 0.01 Hz):
+    // the passes against V are against the c_i too.
+    Eigen::VectorXd norm;
     PetscCall(blocks->columnNorms(v, &norm));
     const double before = norm[0];
     if (!(before > 0) || !std::isfinite(before)) PetscFunctionReturn(0);
-    // Against V twice (classical Gram-Schmidt), then onto the null space of C
-    // again: an expansion is mostly in span V, and removing that part leaves
-    // V's own round-off violation of the constraints divided by the small
-    // remainder (seen: 1e-4 relative), then against V once more.
-    for (int pass = 0; pass < 3 && p > 0; ++pass) {
-      if (pass == 2) PetscCall(null->projectOut(v));
-      PetscCall(blocks->inner(V.leftCols(p), v, &dots));
-      v.noalias() -= V.leftCols(p) * dots;
+    double after;
+    // Against [c V] until a pass no longer cancels (the norm stays above
+    // 1/sqrt(2) of the last: Daniel, Gragg, Kaufman and Stewart's test), at
+    // most three times: once for a vector mostly outside span V (the modes
+    // at the start), twice for the expansions ("twice is enough"). The
+    // earlier version made two passes against the c_i, two against V, two
+    // against the c_i and one against V (four and three) every time.
+    after = before;
+    for (int pass = 0; pass < 3; ++pass) {
+      const double last = after;
+      PetscCall(against(v, true, &after));
+      if (after >= M_SQRT1_2 * last) break;
     }
-    PetscCall(blocks->columnNorms(v, &norm));
-    const double after = norm[0];
     if (!(after > 1e-10 * before)) PetscFunctionReturn(0);
     v /= after;
     if (p == V.cols()) {
@@ -136,25 +137,43 @@ struct Subspace {
       for (Block *b : {&V, &KV, &DV, &MV}) b->conservativeResize(n, grown);
     }
     V.col(p) = v;
-    PetscCall(blocks->multiply(K, V.col(p).data(), KV.col(p).data()));
-    PetscCall(blocks->multiply(D, V.col(p).data(), DV.col(p).data()));
-    PetscCall(blocks->multiply(M, V.col(p).data(), MV.col(p).data()));
     ++p;
+    PetscFunctionReturn(0);
+  }
+
+  // K, D, M times the columns appended since the last call, as blocks (one
+  // pass over each matrix for four columns, LocalBlocks::multiply).
+  PetscErrorCode multiply(Mat K, Mat D, Mat M)
+  {
+    const int k = p - multiplied;
+    PetscFunctionBeginUser;
+    if (k > 0) {
+      PetscCall(blocks->multiply(K, V.middleCols(multiplied, k), KV.middleCols(multiplied, k)));
+      PetscCall(blocks->multiply(D, V.middleCols(multiplied, k), DV.middleCols(multiplied, k)));
+      PetscCall(blocks->multiply(M, V.middleCols(multiplied, k), MV.middleCols(multiplied, k)));
+    }
+    multiplied = p;
     PetscFunctionReturn(0);
   }
 
   // V^T W for the products W, updated from column `from` on (the columns
   // before it did not change: V only grows). Symmetric: K, D, M are.
+  // The block of the new columns with themselves as a symmetric product
+  // (its upper triangle, LocalBlocks::innerSymmetric), the one with the old
+  // columns as a full product.
   PetscErrorCode project(const Block &W, int from, Eigen::MatrixXd *P) const
   {
     Eigen::MatrixXd G;
     const int n = p - from;
     PetscFunctionBeginUser;
     P->conservativeResize(p, p);
-    PetscCall(blocks->inner(V.leftCols(p), W.middleCols(from, n), &G));
-    P->middleCols(from, n) = G;
-    P->block(from, 0, n, from) = G.topRows(from).transpose();
-    P->bottomRightCorner(n, n) = 0.5 * (P->bottomRightCorner(n, n) + P->bottomRightCorner(n, n).transpose()).eval();
+    if (from > 0) {
+      PetscCall(blocks->inner(V.leftCols(from), W.middleCols(from, n), &G));
+      P->block(0, from, from, n) = G;
+      P->block(from, 0, n, from) = G.transpose();
+    }
+    PetscCall(blocks->innerSymmetric(V.middleCols(from, n), W.middleCols(from, n), &G));
+    P->bottomRightCorner(n, n) = G;
     PetscFunctionReturn(0);
   }
 };
@@ -164,19 +183,34 @@ struct RitzPair {
   Eigen::VectorXcd y;
   // Its Ritz vector met the tolerance in the full space at an earlier
   // projection: kept as it is (y padded with zeros gives the same x = V y,
-  // the first columns of V do not change), no functional iteration.
+  // the first columns of V do not change), no functional iteration, and
+  // its residual and fitted multipliers are those of that projection.
   bool converged = false;
+  double residual = 0;  // ||T(lambda) x|| / ||K x|| of its Ritz vector
+  Eigen::VectorXd ar, ai; // the fitted multipliers of x = V y (MultiplierFit)
 };
 
-// The root of y^T (l^2 M + l D + K) y = 0 nearest `near`: the Rayleigh
-// functional of the projected problem (bilinear, not Hermitian: K, D, M are
-// real symmetric, so the left eigenvector is the right one and the
-// functional is stationary at eigenvectors; its error is of the order of the
-// squared vector error).
-std::complex<double> rayleighFunctional(const Eigen::MatrixXd &K, const Eigen::MatrixXd &D, const Eigen::MatrixXd &M,
-                                        const Eigen::VectorXcd &y, std::complex<double> near)
+// K y, D y, M y for a complex y and real K, D, M: the functional iteration
+// needs them for its residual test and for the Rayleigh functional of the
+// same y (computed once, used twice).
+struct Products {
+  Eigen::VectorXcd K, D, M;
+  void of(const Eigen::MatrixXd &Kp, const Eigen::MatrixXd &Dp, const Eigen::MatrixXd &Mp, const Eigen::VectorXcd &y)
+  {
+    K.noalias() = Kp * y;
+    D.noalias() = Dp * y;
+    M.noalias() = Mp * y;
+  }
+};
+
+// The root of y^T (l^2 M + l D + K) y = 0 nearest `near` (P: the products of
+// y): the Rayleigh functional of the projected problem (bilinear, not
+// Hermitian: K, D, M are real symmetric, so the left eigenvector is the
+// right one and the functional is stationary at eigenvectors; its error is
+// of the order of the squared vector error).
+std::complex<double> rayleighFunctional(const Products &P, const Eigen::VectorXcd &y, std::complex<double> near)
 {
-  const std::complex<double> a = y.transpose() * (M * y), b = y.transpose() * (D * y), c = y.transpose() * (K * y);
+  const std::complex<double> a = y.transpose() * P.M, b = y.transpose() * P.D, c = y.transpose() * P.K;
   if (std::abs(a) == 0) return near;
   const std::complex<double> root = std::sqrt(b * b - 4.0 * a * c);
   const std::complex<double> r1 = (-b + root) / (2.0 * a), r2 = (-b - root) / (2.0 * a);
@@ -267,17 +301,19 @@ bool functionalIteration(const Eigen::MatrixXd &K, const Eigen::MatrixXd &D, con
 {
   std::complex<double> l = pair->lambda;
   Eigen::VectorXcd y = pair->y, z;
+  Products P;
+  P.of(K, D, M, y);
   for (int i = 0; i < 30; ++i) {
-    const Eigen::VectorXcd Ky = K * y, Dy = D * y, My = M * y;
-    const double terms = Ky.norm() + std::abs(l) * Dy.norm() + std::norm(l) * My.norm();
-    if ((Ky + l * Dy + (l * l) * My).norm() <= 1e-12 * terms) break;
-    const Eigen::VectorXcd rhs = Dy + 2.0 * l * My;
+    const double terms = P.K.norm() + std::abs(l) * P.D.norm() + std::norm(l) * P.M.norm();
+    if ((P.K + l * P.D + (l * l) * P.M).norm() <= 1e-12 * terms) break;
+    const Eigen::VectorXcd rhs = P.D + 2.0 * l * P.M;
     // T(l) singular to round-off: l is an eigenvalue, y its vector.
     if (!solveShifted(K, D, M, l, rhs, &z)) break;
     const double n = z.norm();
     if (!(n > 0)) break;
     y = z / n;
-    const std::complex<double> next = rayleighFunctional(K, D, M, y, l);
+    P.of(K, D, M, y); // for the functional and the next step's test
+    const std::complex<double> next = rayleighFunctional(P, y, l);
     const double change = std::abs(next - l);
     l = next;
     if (!(change > 1e-14 * std::abs(l))) break;
@@ -307,7 +343,12 @@ bool projectedModes(const Eigen::MatrixXd &K, const Eigen::MatrixXd &D, const Ei
       if (!(w2[j] > 1e-8 * scale)) continue; // rigid-body modes: not oscillating
       Eigen::VectorXcd y = undamped.eigenvectors().col(j).cast<std::complex<double>>();
       y /= y.norm();
-      pairs->push_back({rayleighFunctional(K, D, M, y, std::complex<double>(0.0, std::sqrt(w2[j]))), y});
+      Products P;
+      P.of(K, D, M, y);
+      RitzPair pair;
+      pair.lambda = rayleighFunctional(P, y, std::complex<double>(0.0, std::sqrt(w2[j])));
+      pair.y = y;
+      pairs->push_back(pair);
     }
     if ((int)pairs->size() < count) return false;
   } else {
@@ -362,7 +403,7 @@ PetscErrorCode DampedModeRefiner::refine(double t, Vec q, Vec lambda, Mat K, Mat
   Block phi(n, m);
   for (int k = 0; k < m; ++k) {
     PetscCall(blocks_.fromVec(modes[k], phi.col(k).data()));
-    PetscCall(sub.append(K, D, M, phi.col(k)));
+    PetscCall(sub.append(phi.col(k)));
   }
   // The first-order change of the modes by the damping: T(i w) (phi + dx) = 0
   // gives (K - w^2 M) dx ~ -i w D phi, approximated with P = K - tau M and
@@ -370,86 +411,87 @@ PetscErrorCode DampedModeRefiner::refine(double t, Vec q, Vec lambda, Mat K, Mat
   // + ...: u = P^{-1} D phi and P^{-1} M u. The second vector saves a
   // projection (3 instead of 4 on the paper scene at 10 ms, about a tenth
   // of a run with tracking every 1 ms); P^{-1} D u (second order in the
-  // damping) saved none.
-  Eigen::VectorXd rhs(n), u(n), u2(n);
-  for (int k = 0; k < count && k < m && ok; ++k) { // the wanted ones; the guard modes need no correction
-    PetscCall(blocks_.multiply(D, phi.col(k).data(), rhs.data()));
-    PetscCall(blocks_.solve(solver, rhs.data(), u.data(), &ok));
-    if (!ok) break;
-    PetscCall(sub.append(K, D, M, u));
-    PetscCall(blocks_.multiply(M, u.data(), rhs.data()));
-    PetscCall(blocks_.solve(solver, rhs.data(), u2.data(), &ok));
-    if (ok) PetscCall(sub.append(K, D, M, u2));
+  // damping) saved none. The products as blocks, the appends in the order
+  // u_0, P^{-1} M u_0, u_1, ...
+  const int corrected = std::min(count, m); // the wanted ones; the guard modes need no correction
+  Block rhs(n, corrected), U(n, corrected), U2(n, corrected);
+  Eigen::VectorXd u(n);
+  PetscCall(blocks_.multiply(D, phi.leftCols(corrected), rhs));
+  for (int k = 0; k < corrected && ok; ++k) PetscCall(blocks_.solve(solver, rhs.col(k).data(), U.col(k).data(), &ok));
+  if (ok) PetscCall(blocks_.multiply(M, U, rhs));
+  for (int k = 0; k < corrected && ok; ++k) PetscCall(blocks_.solve(solver, rhs.col(k).data(), U2.col(k).data(), &ok));
+  for (int k = 0; k < corrected && ok; ++k) {
+    PetscCall(sub.append(U.col(k)));
+    PetscCall(sub.append(U2.col(k)));
   }
 
-  Block Xr(n, count), Xi(n, count), Rr(n, count), Ri(n, count), KXr(n, count), KXi(n, count);
-  Block bestXr, bestXi;
   double before = HUGE_VAL, bestWorst = HUGE_VAL;
-  std::vector<std::complex<double>> bestLambda;
-  std::vector<double> bestResidual;
-  std::vector<RitzPair> pairs; // the wanted pairs of the projected problem, continued across expansions
-  Eigen::MatrixXd Kp, Dp, Mp;  // the projected matrices, the first `projected` columns up to date
+  int bestP = 0;
+  std::vector<RitzPair> pairs, best; // the wanted pairs of the projected problem, continued across expansions
+  Eigen::MatrixXd Kp, Dp, Mp;        // the projected matrices, the first `projected` columns up to date
   int projected = 0;
   for (int it = 1; ok && it <= maxIterations && sub.p <= maxSubspace; ++it) {
+    PetscCall(sub.multiply(K, D, M));
     PetscCall(sub.project(sub.KV, projected, &Kp));
     PetscCall(sub.project(sub.DV, projected, &Dp));
     PetscCall(sub.project(sub.MV, projected, &Mp));
     projected = sub.p;
     const bool found = projectedModes(Kp, Dp, Mp, count, &pairs);
     if (!found) break; // the full solve decides (and may report fewer)
-    Eigen::MatrixXd Yr(sub.p, count), Yi(sub.p, count);
-    for (int k = 0; k < count; ++k) Yr.col(k) = pairs[k].y.real(), Yi.col(k) = pairs[k].y.imag();
-    const auto V = sub.V.leftCols(sub.p), KV = sub.KV.leftCols(sub.p), DV = sub.DV.leftCols(sub.p),
-               MV = sub.MV.leftCols(sub.p);
-    Xr.noalias() = V * Yr;
-    Xi.noalias() = V * Yi;
+    // The pairs whose Ritz vector did not meet the tolerance at an earlier
+    // projection: a converged pair keeps its x (RitzPair::converged), its
+    // residual and multipliers, so only these need products here.
+    std::vector<int> open;
+    for (int k = 0; k < count; ++k)
+      if (!pairs[k].converged) open.push_back(k);
+    const int o = (int)open.size();
+    // Real and imaginary parts side by side: columns j and o + j for open[j].
+    Eigen::MatrixXd Y(sub.p, 2 * o), Dc(sub.p, 2 * o), Mc(sub.p, 2 * o);
+    for (int j = 0; j < o; ++j) {
+      const RitzPair &pair = pairs[open[j]];
+      const std::complex<double> l = pair.lambda, l2 = l * l;
+      const Eigen::VectorXd yr = pair.y.real(), yi = pair.y.imag();
+      Y.col(j) = yr, Y.col(o + j) = yi;
+      Dc.col(j) = l.real() * yr - l.imag() * yi;
+      Dc.col(o + j) = l.real() * yi + l.imag() * yr;
+      Mc.col(j) = l2.real() * yr - l2.imag() * yi;
+      Mc.col(o + j) = l2.real() * yi + l2.imag() * yr;
+    }
     // K x and r = K x + lambda D x + lambda^2 M x, real and imaginary parts,
     // from the products kept with V (no product with the matrices here);
     // the D and M terms as one product each with the combined coefficients.
-    KXr.noalias() = KV * Yr;
-    KXi.noalias() = KV * Yi;
-    Eigen::MatrixXd Dr(sub.p, count), Di(sub.p, count), Mr(sub.p, count), Mi(sub.p, count);
-    for (int k = 0; k < count; ++k) {
-      const std::complex<double> l = pairs[k].lambda, l2 = l * l;
-      Dr.col(k) = l.real() * Yr.col(k) - l.imag() * Yi.col(k);
-      Di.col(k) = l.real() * Yi.col(k) + l.imag() * Yr.col(k);
-      Mr.col(k) = l2.real() * Yr.col(k) - l2.imag() * Yi.col(k);
-      Mi.col(k) = l2.real() * Yi.col(k) + l2.imag() * Yr.col(k);
-    }
-    Rr = KXr;
-    Rr.noalias() += DV * Dr;
-    Rr.noalias() += MV * Mr;
-    Ri = KXi;
-    Ri.noalias() += DV * Di;
-    Ri.noalias() += MV * Mi;
+    // x = V y itself is needed for the best iterate only (at the end).
+    const auto KV = sub.KV.leftCols(sub.p), DV = sub.DV.leftCols(sub.p), MV = sub.MV.leftCols(sub.p);
+    // Tall times small: LocalBlocks::combine.
+    Block KX(n, 2 * o), R(n, 2 * o);
+    LocalBlocks::combine(KV, Y, KX);
+    R = KX;
+    LocalBlocks::combine(DV, Dc, R, true);
+    LocalBlocks::combine(MV, Mc, R, true);
     // The fitted multipliers a add K e_i a_i = c a to K x as well.
-    Eigen::MatrixXd ar, ai;
-    PetscCall(multipliers.fit(Rr, Xr, &ar));
-    PetscCall(multipliers.fit(Ri, Xi, &ai));
-    if (ar.size()) KXr.noalias() += multipliers.c * ar;
-    if (ai.size()) KXi.noalias() += multipliers.c * ai;
-    Eigen::VectorXd knr, kni, rnr, rni;
-    PetscCall(blocks_.columnNorms(KXr, &knr));
-    PetscCall(blocks_.columnNorms(KXi, &kni));
-    PetscCall(blocks_.columnNorms(Rr, &rnr));
-    PetscCall(blocks_.columnNorms(Ri, &rni));
-    std::vector<double> residual(count);
+    Eigen::MatrixXd a;
+    PetscCall(multipliers.fit(R, &a));
+    if (a.size()) LocalBlocks::combine(multipliers.c, a, KX, true);
+    Eigen::VectorXd kn, rn;
+    PetscCall(blocks_.columnNorms(KX, &kn));
+    PetscCall(blocks_.columnNorms(R, &rn));
     std::vector<Eigen::VectorXd> expansion;
     double worst = 0;
-    for (int k = 0; k < count; ++k) {
-      const double kn = std::hypot(knr[k], kni[k]);
-      const double rel = kn > 0 ? std::hypot(rnr[k], rni[k]) / kn : 1.0;
-      worst = std::max(worst, rel);
-      residual[k] = rel;
-      pairs[k].converged = rel <= tolerance;
-      if (rel > tolerance) {
-        for (const auto &r : {Rr.col(k), Ri.col(k)}) {
-          PetscCall(blocks_.solve(solver, r.data(), u.data(), &ok));
+    for (int j = 0; j < o; ++j) {
+      RitzPair &pair = pairs[open[j]];
+      const double knorm = std::hypot(kn[j], kn[o + j]);
+      pair.residual = knorm > 0 ? std::hypot(rn[j], rn[o + j]) / knorm : 1.0;
+      if (a.size()) pair.ar = a.col(j), pair.ai = a.col(o + j);
+      pair.converged = pair.residual <= tolerance;
+      if (!pair.converged) {
+        for (const int col : {j, o + j}) {
+          PetscCall(blocks_.solve(solver, R.col(col).data(), u.data(), &ok));
           if (!ok) break;
           expansion.push_back(u);
         }
       }
     }
+    for (int k = 0; k < count; ++k) worst = std::max(worst, pairs[k].residual);
     info->iterations = it;
     info->subspace = sub.p;
     if (worst < bestWorst) {
@@ -457,25 +499,35 @@ PetscErrorCode DampedModeRefiner::refine(double t, Vec q, Vec lambda, Mat K, Mat
       // (about 1e-9 on the paper scene) further expansions are noise and can
       // make the projection worse (spurious Ritz pairs near the wanted ones).
       bestWorst = worst;
-      bestLambda.clear();
-      bestResidual = residual;
-      for (int k = 0; k < count; ++k) bestLambda.push_back(pairs[k].lambda);
-      bestXr = Xr;
-      bestXi = Xi;
+      best.assign(pairs.begin(), pairs.begin() + count);
+      bestP = sub.p;
     }
     if (worst <= tolerance || worst > before) break; // converged, or past the round-off floor
     before = worst;
-    for (const Eigen::VectorXd &e : expansion) PetscCall(sub.append(K, D, M, e));
+    for (const Eigen::VectorXd &e : expansion) PetscCall(sub.append(e));
   }
   info->worstResidual = bestWorst;
   if (bestWorst <= tolerance) {
+    // x = V y of the best iterate (V's first bestP columns are those of its
+    // projection) and the fitted multipliers.
+    Eigen::MatrixXd Y(bestP, 2 * count), A;
+    for (int k = 0; k < count; ++k) {
+      Y.col(k) = best[k].y.real().head(bestP), Y.col(count + k) = best[k].y.imag().head(bestP);
+    }
+    Block X(n, 2 * count);
+    LocalBlocks::combine(sub.V.leftCols(bestP), Y, X);
+    if (multipliers.c.cols() > 0) {
+      A.resize(multipliers.c.cols(), 2 * count);
+      for (int k = 0; k < count; ++k) A.col(k) = best[k].ar, A.col(count + k) = best[k].ai;
+      multipliers.addMultipliers(X, A);
+    }
     PetscHandle<Vec> xr, xi;
     PetscCall(VecDuplicate(modes[0], xr.address()));
     PetscCall(VecDuplicate(modes[0], xi.address()));
     for (int k = 0; k < count; ++k) {
-      PetscCall(blocks_.toVec(bestXr.col(k).data(), xr));
-      PetscCall(blocks_.toVec(bestXi.col(k).data(), xi));
-      PetscCall(appendDampedMode(assembler_, bestLambda[k], xr, xi, bestResidual[k], keepVectors, result));
+      PetscCall(blocks_.toVec(X.col(k).data(), xr));
+      PetscCall(blocks_.toVec(X.col(count + k).data(), xi));
+      PetscCall(appendDampedMode(assembler_, best[k].lambda, xr, xi, best[k].residual, keepVectors, result));
     }
     *converged = true;
   }

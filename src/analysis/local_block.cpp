@@ -27,6 +27,18 @@ PetscErrorCode LocalBlocks::inner(const Eigen::Ref<const Eigen::MatrixXd> &A,
   PetscFunctionReturn(0);
 }
 
+PetscErrorCode LocalBlocks::innerSymmetric(const Eigen::Ref<const Eigen::MatrixXd> &A,
+                                           const Eigen::Ref<const Eigen::MatrixXd> &B, Eigen::MatrixXd *G) const
+{
+  PetscFunctionBeginUser;
+  G->setZero(A.cols(), B.cols());
+  G->triangularView<Eigen::Upper>() = A.transpose() * B;
+  if (size_ > 1)
+    PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, G->data(), (PetscMPIInt)G->size(), MPI_DOUBLE, MPI_SUM, comm_));
+  G->triangularView<Eigen::StrictlyLower>() = G->transpose();
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode LocalBlocks::columnNorms(const Eigen::Ref<const Eigen::MatrixXd> &A, Eigen::VectorXd *norms) const
 {
   PetscFunctionBeginUser;
@@ -47,6 +59,122 @@ PetscErrorCode LocalBlocks::multiply(Mat M, const double *x, double *y)
   PetscCall(VecResetArray(x_));
   PetscCall(VecResetArray(y_));
   PetscFunctionReturn(0);
+}
+
+PetscErrorCode LocalBlocks::multiply(Mat M, const Eigen::Ref<const Eigen::MatrixXd> &X, Eigen::Ref<Eigen::MatrixXd> Y)
+{
+  PetscBool sequential;
+  PetscFunctionBeginUser;
+  PetscCall(PetscObjectTypeCompare((PetscObject)M, MATSEQAIJ, &sequential));
+  const Eigen::Index k = X.cols();
+  if (!sequential || X.rows() != n_ || Y.rows() != n_ || Y.cols() != k) {
+    for (Eigen::Index j = 0; j < k; ++j) PetscCall(multiply(M, X.col(j).data(), Y.col(j).data()));
+    PetscFunctionReturn(0);
+  }
+  PetscInt rows;
+  const PetscInt *ia, *ja;
+  PetscBool done;
+  const PetscScalar *a;
+  PetscCall(MatGetRowIJ(M, 0, PETSC_FALSE, PETSC_FALSE, &rows, &ia, &ja, &done));
+  PetscCheck(done && rows == n_, PETSC_COMM_SELF, PETSC_ERR_PLIB, "LocalBlocks: no compressed rows of the matrix");
+  PetscCall(MatSeqAIJGetArrayRead(M, &a));
+  const Eigen::Index xs = X.outerStride(), ys = Y.outerStride();
+  Eigen::Index j = 0;
+  // Four columns per pass: the entries and their column indices are loaded
+  // once for four products. The four columns are copied side by side (row
+  // major) first, so that the four x values of an entry are one 32-byte row
+  // and the four sums one register pair (2 x SSE2): about 3.3 instead of 4.3
+  // instructions per entry and column. Each column's sum is still formed in
+  // the order of the row's entries.
+  for (; j + 4 <= k; j += 4) {
+    rows4_.resize(n_, 4);
+    rows4_ = X.middleCols(j, 4);
+    for (PetscInt i = 0; i < rows; ++i) {
+      Eigen::Array<double, 1, 4> s = Eigen::Array<double, 1, 4>::Zero();
+      for (PetscInt e = ia[i]; e < ia[i + 1]; ++e) s += a[e] * rows4_.row(ja[e]).array();
+      Y.row(i).segment<4>(j) = s.matrix();
+    }
+  }
+  for (; j + 2 <= k; j += 2) {
+    const double *x0 = X.col(j).data(), *x1 = x0 + xs;
+    double *y0 = Y.col(j).data(), *y1 = y0 + ys;
+    for (PetscInt i = 0; i < rows; ++i) {
+      double s0 = 0, s1 = 0;
+      for (PetscInt e = ia[i]; e < ia[i + 1]; ++e) s0 += a[e] * x0[ja[e]], s1 += a[e] * x1[ja[e]];
+      y0[i] = s0, y1[i] = s1;
+    }
+  }
+  for (; j < k; ++j) {
+    const double *x0 = X.col(j).data();
+    double *y0 = Y.col(j).data();
+    for (PetscInt i = 0; i < rows; ++i) {
+      double s0 = 0;
+      for (PetscInt e = ia[i]; e < ia[i + 1]; ++e) s0 += a[e] * x0[ja[e]];
+      y0[i] = s0;
+    }
+  }
+  const double nonzeros = (double)ia[rows];
+  PetscCall(MatSeqAIJRestoreArrayRead(M, &a));
+  PetscCall(MatRestoreRowIJ(M, 0, PETSC_FALSE, PETSC_FALSE, &rows, &ia, &ja, &done));
+  // As MatMult: 2 flops per nonzero and column (for -log_view).
+  PetscCall(PetscLogFlops(2.0 * nonzeros * (double)k));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode LocalBlocks::columns(Mat M, PetscInt first, Eigen::Ref<Eigen::MatrixXd> C)
+{
+  PetscBool sequential;
+  const Eigen::Index k = C.cols();
+  PetscFunctionBeginUser;
+  PetscCall(PetscObjectTypeCompare((PetscObject)M, MATSEQAIJ, &sequential));
+  if (!sequential || C.rows() != n_) {
+    Eigen::MatrixXd E = Eigen::MatrixXd::Zero(n_, k);
+    for (Eigen::Index i = 0; i < k; ++i)
+      if (first + i - lo_ >= 0 && first + i - lo_ < n_) E(first + i - lo_, i) = 1.0;
+    PetscCall(multiply(M, E, C));
+    PetscFunctionReturn(0);
+  }
+  PetscInt rows;
+  const PetscInt *ia, *ja;
+  PetscBool done;
+  const PetscScalar *a;
+  PetscCall(MatGetRowIJ(M, 0, PETSC_FALSE, PETSC_FALSE, &rows, &ia, &ja, &done));
+  PetscCheck(done && rows == n_, PETSC_COMM_SELF, PETSC_ERR_PLIB, "LocalBlocks: no compressed rows of the matrix");
+  PetscCall(MatSeqAIJGetArrayRead(M, &a));
+  C.setZero();
+  for (PetscInt i = 0; i < rows; ++i)
+    for (PetscInt e = ia[i]; e < ia[i + 1]; ++e)
+      if (ja[e] >= first && ja[e] < first + (PetscInt)k) C(i, ja[e] - first) = a[e];
+  PetscCall(MatSeqAIJRestoreArrayRead(M, &a));
+  PetscCall(MatRestoreRowIJ(M, 0, PETSC_FALSE, PETSC_FALSE, &rows, &ia, &ja, &done));
+  PetscFunctionReturn(0);
+}
+
+void LocalBlocks::combine(const Eigen::Ref<const Eigen::MatrixXd> &X, const Eigen::Ref<const Eigen::MatrixXd> &Y,
+                          Eigen::Ref<Eigen::MatrixXd> out, bool add)
+{
+  const Eigen::Index p = X.cols(), k = Y.cols();
+  if (k == 1 || p == 0) {
+    if (!add) out.noalias() = X * Y;
+    else out.noalias() += X * Y;
+    return;
+  }
+  for (Eigen::Index c = 0; c < k; ++c) {
+    auto o = out.col(c);
+    Eigen::Index j = 0;
+    if (!add) { // the first terms written, not added to zeros
+      if (p >= 2) {
+        o = X.col(0) * Y(0, c) + X.col(1) * Y(1, c);
+        j = 2;
+      } else {
+        o = X.col(0) * Y(0, c);
+        j = 1;
+      }
+    }
+    for (; j + 4 <= p; j += 4)
+      o += X.col(j) * Y(j, c) + X.col(j + 1) * Y(j + 1, c) + X.col(j + 2) * Y(j + 2, c) + X.col(j + 3) * Y(j + 3, c);
+    for (; j < p; ++j) o += X.col(j) * Y(j, c);
+  }
 }
 
 PetscErrorCode LocalBlocks::solve(KSP ksp, const double *b, double *x, bool *ok)

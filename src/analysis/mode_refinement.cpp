@@ -69,26 +69,32 @@ PetscErrorCode ModeRefiner::refine(double t, Vec q, Vec lambda, double target, i
   // The vectors as dense local blocks (local_block.hpp): one column each.
   if (!blocks_.ready()) PetscCall(blocks_.setUp(basis[0]));
   const PetscInt n = blocks_.localSize();
-  Eigen::MatrixXd V(n, m), BV(n, m), W(n, m), AW(n, m), BW(n, m), R(n, count);
-  for (int j = 0; j < m; ++j) {
-    PetscCall(blocks_.fromVec(basis[j], V.col(j).data()));
-    PetscCall(blocks_.multiply(Bc_.get(), V.col(j).data(), BV.col(j).data()));
-  }
+  Eigen::MatrixXd V(n, m), AV(n, m), BV(n, m), W(n, m), AW(n, m), BW(n, m), R(n, count);
+  for (int j = 0; j < m; ++j) PetscCall(blocks_.fromVec(basis[j], V.col(j).data()));
+  PetscCall(blocks_.multiply(Bc_.get(), V, BV));
   Eigen::MatrixXd GA, GB;
   Eigen::VectorXd an, rn;
   bool solved = true;
+  // Leading wanted Ritz vectors that met the tolerance ("soft locking"):
+  // they enter the next subspace as they are, with their products, instead
+  // of through a solve and two products. The lowest modes converge first
+  // (the shift is below them), so the locked ones are mostly a prefix; the
+  // others and the guard vectors iterate as before, and every reported pair
+  // is tested again at each iteration.
+  int locked = 0;
   for (int it = 1; it <= maxIterations; ++it) {
-    for (int j = 0; j < m && solved; ++j) {
-      PetscCall(blocks_.solve(ksp_, BV.col(j).data(), W.col(j).data(), &solved));
-      PetscCall(blocks_.multiply(Ac_.get(), W.col(j).data(), AW.col(j).data()));
-      PetscCall(blocks_.multiply(Bc_.get(), W.col(j).data(), BW.col(j).data()));
-    }
+    W.leftCols(locked) = V.leftCols(locked);
+    AW.leftCols(locked) = AV.leftCols(locked);
+    BW.leftCols(locked) = BV.leftCols(locked);
+    for (int j = locked; j < m && solved; ++j) PetscCall(blocks_.solve(ksp_, BV.col(j).data(), W.col(j).data(), &solved));
     if (!solved) break;
-    // Projected pencil (W^T A W, W^T B W), symmetrized against round-off.
-    PetscCall(blocks_.inner(W, AW, &GA));
-    PetscCall(blocks_.inner(W, BW, &GB));
-    GA = 0.5 * (GA + GA.transpose()).eval();
-    GB = 0.5 * (GB + GB.transpose()).eval();
+    // The products as blocks: one pass over each matrix for four columns.
+    PetscCall(blocks_.multiply(Ac_.get(), W.rightCols(m - locked), AW.rightCols(m - locked)));
+    PetscCall(blocks_.multiply(Bc_.get(), W.rightCols(m - locked), BW.rightCols(m - locked)));
+    // Projected pencil (W^T A W, W^T B W): symmetric, the upper triangles
+    // computed and mirrored (LocalBlocks::innerSymmetric).
+    PetscCall(blocks_.innerSymmetric(W, AW, &GA));
+    PetscCall(blocks_.innerSymmetric(W, BW, &GB));
     Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> rr(GA, GB);
     if (rr.info() != Eigen::Success) break; // W lost B-rank: let the full solve decide
     const Eigen::VectorXd theta = rr.eigenvalues(); // ascending
@@ -96,15 +102,18 @@ PetscErrorCode ModeRefiner::refine(double t, Vec q, Vec lambda, double target, i
     // The modes must be finite and non-negative (docs/model.md §5): anything
     // else goes to the full solve, which filters and reports.
     if (!theta.allFinite() || theta[0] < -1e-8 * std::abs(theta[m - 1])) break;
-    V.noalias() = W * Y;
-    BV.noalias() = BW * Y; // B V for the next iteration without products with B
-    // r = A x - theta B x = sum_j Y_jk (A w_j - theta B w_j) for the wanted pairs.
-    R.noalias() = AW * Y.leftCols(count);
-    PetscCall(blocks_.columnNorms(R, &an));
-    R.noalias() -= BW * (Y.leftCols(count) * theta.head(count).asDiagonal());
+    // Tall times small (LocalBlocks::combine: cheaper than Eigen's general product here).
+    LocalBlocks::combine(W, Y, V);
+    LocalBlocks::combine(BW, Y, BV); // B V for the next iteration without products with B
+    LocalBlocks::combine(AW, Y, AV); // A V likewise, for the residuals and locked vectors
+    // r = A x - theta B x for the wanted pairs, from A V and B V.
+    R.noalias() = AV.leftCols(count) - BV.leftCols(count) * theta.head(count).asDiagonal();
+    PetscCall(blocks_.columnNorms(AV.leftCols(count), &an));
     PetscCall(blocks_.columnNorms(R, &rn));
     double worst = 0;
     for (int k = 0; k < count; ++k) worst = std::max(worst, an[k] > 0 ? rn[k] / an[k] : 1.0);
+    locked = 0;
+    while (locked < count && an[locked] > 0 && rn[locked] <= tolerance * an[locked]) ++locked;
     const double before = out->worstResidual;
     out->iterations = it;
     out->worstResidual = worst;

@@ -91,6 +91,25 @@ TEST_F(LocalBlocksTest, InnerProductsAndNormsEqualPetscs)
   }
 }
 
+TEST_F(LocalBlocksTest, SymmetricInnerProductIsTheUpperTriangleMirrored)
+{
+  // A^T (S A) with S = diag(1 + r): symmetric; the upper triangle equals the
+  // full product's, the lower is its mirror image.
+  const PetscInt n = blocks_.localSize(), lo = blocks_.firstRow();
+  Eigen::MatrixXd SA = V_;
+  for (PetscInt r = 0; r < n; ++r) SA.row(r) *= 1.0 + 0.1 * (lo + r);
+  Eigen::MatrixXd G, full;
+  ASSERT_EQ(blocks_.innerSymmetric(V_, SA, &G), 0);
+  ASSERT_EQ(blocks_.inner(V_, SA, &full), 0);
+  ASSERT_EQ(G.rows(), 3);
+  ASSERT_EQ(G.cols(), 3);
+  for (int i = 0; i < 3; ++i)
+    for (int j = i; j < 3; ++j) {
+      EXPECT_NEAR(G(i, j), full(i, j), 1e-13 * full.norm()) << i << ", " << j;
+      EXPECT_EQ(G(j, i), G(i, j)) << i << ", " << j;
+    }
+}
+
 TEST_F(LocalBlocksTest, MultiplyEqualsMatMultAndLeavesTheWorkVectorsFree)
 {
   // Three products in a row: each must give its borrowed arrays back
@@ -104,6 +123,56 @@ TEST_F(LocalBlocksTest, MultiplyEqualsMatMultAndLeavesTheWorkVectorsFree)
     std::vector<double> expected(blocks_.localSize());
     ASSERT_EQ(blocks_.fromVec(y, expected.data()), 0);
     for (PetscInt r = 0; r < blocks_.localSize(); ++r) EXPECT_NEAR(Y(r, j), expected[r], 1e-13) << r; // same sums, maybe in another order
+  }
+}
+
+TEST_F(LocalBlocksTest, BlockMultiplyEqualsMatMultColumnByColumn)
+{
+  // 1 to 7 columns: the passes of four, two and one column of the
+  // sequential path (on several ranks: MatMult per column).
+  const PetscInt n = blocks_.localSize();
+  for (int k = 1; k <= 7; ++k) {
+    Eigen::MatrixXd X(n, k), Y(n, k);
+    for (int j = 0; j < k; ++j) X.col(j) = V_.col(j % 3) * (1.0 + 0.25 * j);
+    ASSERT_EQ(blocks_.multiply(A_, X, Y), 0);
+    for (int j = 0; j < k; ++j) {
+      Eigen::VectorXd y(n);
+      ASSERT_EQ(blocks_.multiply(A_, X.col(j).data(), y.data()), 0);
+      for (PetscInt r = 0; r < n; ++r) EXPECT_NEAR(Y(r, j), y[r], 1e-13) << "k = " << k << ", column " << j;
+    }
+  }
+}
+
+TEST_F(LocalBlocksTest, ColumnsAreTheProductsWithUnitVectors)
+{
+  // Columns 5, 6, 7 of A: read off the entries on one rank, products with
+  // unit vectors on several; either way bitwise M e_i.
+  const PetscInt n = blocks_.localSize(), lo = blocks_.firstRow();
+  Eigen::MatrixXd C(n, 3), E = Eigen::MatrixXd::Zero(n, 3), expected(n, 3);
+  ASSERT_EQ(blocks_.columns(A_, 5, C), 0);
+  for (int i = 0; i < 3; ++i)
+    if (5 + i - lo >= 0 && 5 + i - lo < n) E(5 + i - lo, i) = 1.0;
+  for (int i = 0; i < 3; ++i) ASSERT_EQ(blocks_.multiply(A_, E.col(i).data(), expected.col(i).data()), 0);
+  for (int i = 0; i < 3; ++i)
+    for (PetscInt r = 0; r < n; ++r) EXPECT_EQ(C(r, i), expected(r, i)) << "row " << lo + r << ", column " << 5 + i;
+}
+
+TEST_F(LocalBlocksTest, CombineEqualsEigensProduct)
+{
+  const PetscInt n = blocks_.localSize();
+  for (int p : {1, 2, 3, 6, 9}) {
+    for (int k : {1, 2, 5}) {
+      Eigen::MatrixXd X(n, p), Y(p, k), out(n, k), sum(n, k);
+      for (int j = 0; j < p; ++j) X.col(j) = V_.col(j % 3) * (1.0 + 0.5 * j);
+      for (int j = 0; j < p; ++j)
+        for (int c = 0; c < k; ++c) Y(j, c) = std::cos(1.3 * j + 0.7 * c);
+      LocalBlocks::combine(X, Y, out);
+      const Eigen::MatrixXd expected = X * Y;
+      EXPECT_LE((out - expected).norm(), 1e-14 * (1.0 + expected.norm())) << "p = " << p << ", k = " << k;
+      sum = expected;
+      LocalBlocks::combine(X, Y, sum, true);
+      EXPECT_LE((sum - 2.0 * expected).norm(), 1e-14 * (1.0 + expected.norm())) << "add, p = " << p << ", k = " << k;
+    }
   }
 }
 
