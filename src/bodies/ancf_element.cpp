@@ -464,7 +464,16 @@ void internalForce(const Section &sec, double l, const Vec8 &e, Vec8 &f, Mat8 *K
   for (int j = 0; j < proj.n; ++j) Kt->noalias() += (EAproj * l) * proj.grad[j] * proj.grad[j].transpose();
 }
 
-double dampingForce(const Section &sec, double l, const Vec8 &e, const Vec8 &edot, Vec8 &fd, Mat8 *Kq, Mat8 *Dv)
+namespace {
+
+// Below this, no product of two factors overflows (the rest-rate test below).
+inline bool moderate(double x) { return std::abs(x) < 1e100; }
+template <typename V> bool moderate(const V &v) { return (v.array().abs() < 1e100).all(); }
+
+// dampingForce; restShortcut: at zero rate, Kq is set to zero instead of
+// summed (see there).
+double dampingForceImpl(const Section &sec, double l, const Vec8 &e, const Vec8 &edot, Vec8 &fd, Mat8 *Kq, Mat8 *Dv,
+                        bool restShortcut)
 {
   // The axial strain rate on the points of the axial strain, so that D stays etaA K_axial.
   const QuadRule &g = quadRule(sec.axialIntegration);
@@ -482,6 +491,18 @@ double dampingForce(const Section &sec, double l, const Vec8 &e, const Vec8 &edo
   Eigen::Matrix4d P, Q;
   if (Kq) P.setZero(), Q.setZero(), Kq->setZero();
   if (Dv) Dv->setZero();
+  // At rest (edot all zeros, either sign: the eigen-analysis' damping pencil
+  // is taken at v = 0) r1d = r2d = +0 exactly (sums from zero), and so
+  // epsdot, Kdot, hE, hK, bd, alphadot, gradDot and the rate of the projected
+  // strain are signed zeros: every term summed into Kq, P and Q is a product
+  // with a zero factor and is itself a signed zero as long as the other
+  // factors are finite and no product of two of them overflows (all below
+  // 1e100, checked point by point), and sums from +0 of signed zeros stay
+  // +0. Kq is then +0 everywhere, bit for bit what the sums give, and is left
+  // as set above; the sums are what dfd/de cost (about 2/3 of a tangent
+  // evaluation). A factor out of range: the full sums (restShortcut false).
+  const bool atRest = Kq && restShortcut && (edot.array() == 0.0).all();
+  bool restExact = atRest;
   for (int p = 0; p < g.size; ++p) {
     const QuadPoint &q = g.points[p];
     const Eigen::Vector4d &s1 = shapes.s1[p], &s2 = shapes.s2[p];
@@ -507,6 +528,12 @@ double dampingForce(const Section &sec, double l, const Vec8 &e, const Vec8 &edo
     fl += (ca * epsdot) * gE + (cb * Kdot) * gK;
     if (Dv) Dv->noalias() += ca * gE * gE.transpose() + cb * gK * gK.transpose();
     if (!Kq) continue;
+    if (atRest) {
+      restExact = restExact && moderate(ca) && moderate(cb) && moderate(iJ2) && moderate(K) && moderate(r1) &&
+                  moderate(r2) && moderate(s1) && moderate(s2) && moderate(gE) && moderate(gK) &&
+                  (!proj.n || moderate(wx * (1.0 - proj.gamma) * sec.EA * sec.etaA));
+      continue;
+    }
     const Vec8 hE = expand(s1, r1d);
     const Vec8 hK = (expand(s1, rotCW(r2d)) - expand(s2, rotCW(r1d)) - 2.0 * K * hE - 2.0 * Kdot * gE -
                      2.0 * epsdot * gK) *
@@ -524,11 +551,26 @@ double dampingForce(const Section &sec, double l, const Vec8 &e, const Vec8 &edo
     fl += (cproj * proj.alphaDot[j]) * proj.grad[j];
     power += cproj * proj.alphaDot[j] * proj.alphaDot[j];
     if (Dv) Dv->noalias() += cproj * proj.grad[j] * proj.grad[j].transpose();
-    if (Kq) Kq->noalias() += cproj * proj.grad[j] * proj.gradDot[j].transpose();
+    if (atRest) restExact = restExact && moderate(cproj) && moderate(proj.grad[j]);
+    else if (Kq) Kq->noalias() += cproj * proj.grad[j] * proj.gradDot[j].transpose();
   }
+  // Before fd is written (it may alias e or edot).
+  if (atRest && !restExact) return dampingForceImpl(sec, l, e, edot, fd, Kq, Dv, false);
   fd = fl;
-  if (Kq) addKronecker(P, Q, *Kq);
+  if (Kq && !atRest) addKronecker(P, Q, *Kq);
   return power;
+}
+
+} // namespace
+
+double dampingForce(const Section &sec, double l, const Vec8 &e, const Vec8 &edot, Vec8 &fd, Mat8 *Kq, Mat8 *Dv)
+{
+  return dampingForceImpl(sec, l, e, edot, fd, Kq, Dv, true);
+}
+
+double dampingForceSummed(const Section &sec, double l, const Vec8 &e, const Vec8 &edot, Vec8 &fd, Mat8 *Kq, Mat8 *Dv)
+{
+  return dampingForceImpl(sec, l, e, edot, fd, Kq, Dv, false);
 }
 
 void internalAndDampingForce(const Section &sec, double l, const Vec8 &e, const Vec8 &edot, Vec8 &f, Vec8 &fd)
