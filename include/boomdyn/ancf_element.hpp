@@ -71,6 +71,13 @@ double dampingForce(const Section &sec, double l, const Vec8 &e, const Vec8 &edo
 double dampingForceSummed(const Section &sec, double l, const Vec8 &e, const Vec8 &edot, Vec8 &fd, Mat8 *Kq,
                           Mat8 *Dv);
 
+// At edot = 0 (all entries zero; the eigen-analysis' pencil): Kt of
+// internalForce and Kq (zero), Dv of dampingForce in one pass, bit-identical
+// to those calls. False (outputs undefined) when edot is not zero or a factor
+// is out of the range of dampingForce's rest shortcut: call the two.
+bool stiffnessAndDampingAtRest(const Section &sec, double l, const Vec8 &e, const Vec8 &edot, Mat8 &Kt, Mat8 &Kq,
+                               Mat8 &Dv);
+
 // internalForce(sec, l, e, f, nullptr) and dampingForce(sec, l, e, edot, fd,
 // nullptr, nullptr) in one pass (shared shape functions and strains), with
 // bit-identical results: the residual of a damped element.

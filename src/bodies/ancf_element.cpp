@@ -568,6 +568,77 @@ double dampingForce(const Section &sec, double l, const Vec8 &e, const Vec8 &edo
   return dampingForceImpl(sec, l, e, edot, fd, Kq, Dv, true);
 }
 
+bool stiffnessAndDampingAtRest(const Section &sec, double l, const Vec8 &e, const Vec8 &edot, Mat8 &Kt, Mat8 &Kq,
+                               Mat8 &Dv)
+{
+  if (!(edot.array() == 0.0).all()) return false;
+  // internalForce's tangent and dampingForce's matrices in one loop over the
+  // points: r', r'', the projection, 1/|r'|^2, K and the gradients g_e =
+  // dEps, g_K = dK are the same expressions on the same values in both, so
+  // they are formed once; every accumulator (Kt, P, Q of the stiffness; Dv)
+  // receives the terms of its own kernel in its order. Not formed: the
+  // forces and the power (not asked for), and Kq, zero at rest under
+  // dampingForce's checks, which are made here on the same factors.
+  const QuadRule &g = quadRule(sec.axialIntegration);
+  const ShapeTable &shapes = shapeTable(g, l);
+  Vec2 slopes[kGaussPoints + kReducedAxialPoints], curvatures[kGaussPoints + kReducedAxialPoints];
+  for (int p = 0; p < g.size; ++p) {
+    Vec2 r1 = Vec2::Zero(), r2 = Vec2::Zero();
+    for (int k = 0; k < 4; ++k) {
+      r1 += shapes.s1[p][k] * e.segment<2>(2 * k);
+      r2 += shapes.s2[p][k] * e.segment<2>(2 * k);
+    }
+    slopes[p] = r1, curvatures[p] = r2;
+  }
+  // With edot: alpha and the gradients as without it (internalForce's call),
+  // and the rates that dampingForce's call adds.
+  const AxialProjection proj = projectAxialStrain(sec, l, shapes, e, &edot, true,
+                                                  sec.axialIntegration == AxialIntegration::Assumed ? slopes : nullptr);
+  const double EAproj = (1.0 - proj.gamma) * sec.EA;
+  const double cproj = (1.0 - proj.gamma) * sec.EA * sec.etaA * l;
+  Eigen::Matrix4d P, Q;
+  P.setZero(), Q.setZero();
+  Kt.setZero();
+  Kq.setZero();
+  Dv.setZero();
+  bool restExact = true;
+  for (int p = 0; p < g.size; ++p) {
+    const QuadPoint &q = g.points[p];
+    const Eigen::Vector4d &s1 = shapes.s1[p], &s2 = shapes.s2[p];
+    const Vec2 &r1 = slopes[p], &r2 = curvatures[p];
+    const double wx = q.w * l;
+    const double J2 = r1.squaredNorm(), iJ2 = 1.0 / J2;
+    const double K = cross(r1, r2) * iJ2;
+    // Stiffness (internalForce).
+    const double EA = q.axial * proj.gamma * sec.EA, EI = q.bending * sec.EI;
+    const double eps = 0.5 * (J2 - 1.0);
+    const double N = EA * eps + (proj.n ? EAproj * proj.strain(q.xi) : 0.0);
+    const double a = N - 2.0 * EI * K * K * iJ2, b = EI * K * iJ2;
+    const Vec8 dEps = expand(s1, r1);
+    const Vec8 dK = (expand(s1, rotCW(r2)) - expand(s2, rotCW(r1)) - 2.0 * K * dEps) * iJ2;
+    Eigen::Matrix<double, 8, 2> G;
+    G << dEps, dK;
+    Eigen::Matrix2d Mw;
+    Mw << wx * EA, -2.0 * wx * b, -2.0 * wx * b, wx * EI;
+    Kt.noalias() += G * Mw * G.transpose();
+    P.noalias() += (wx * a) * s1 * s1.transpose();
+    Q.noalias() += (wx * b) * (s1 * s2.transpose() - s2 * s1.transpose());
+    // Damping (dampingForce): g_e = dEps, g_K = dK.
+    const double ca = wx * proj.gamma * sec.EA * sec.etaA * q.axial, cb = wx * sec.EI * sec.etaB * q.bending;
+    Dv.noalias() += ca * dEps * dEps.transpose() + cb * dK * dK.transpose();
+    restExact = restExact && moderate(ca) && moderate(cb) && moderate(iJ2) && moderate(K) && moderate(r1) &&
+                moderate(r2) && moderate(s1) && moderate(s2) && moderate(dEps) && moderate(dK) &&
+                (!proj.n || moderate(wx * (1.0 - proj.gamma) * sec.EA * sec.etaA));
+  }
+  addKronecker(P, Q, Kt);
+  for (int j = 0; j < proj.n; ++j) Kt.noalias() += (EAproj * l) * proj.grad[j] * proj.grad[j].transpose();
+  for (int j = 0; j < proj.n; ++j) {
+    Dv.noalias() += cproj * proj.grad[j] * proj.grad[j].transpose();
+    restExact = restExact && moderate(cproj) && moderate(proj.grad[j]);
+  }
+  return restExact;
+}
+
 double dampingForceSummed(const Section &sec, double l, const Vec8 &e, const Vec8 &edot, Vec8 &fd, Mat8 *Kq, Mat8 *Dv)
 {
   return dampingForceImpl(sec, l, e, edot, fd, Kq, Dv, false);

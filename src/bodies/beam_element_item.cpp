@@ -119,8 +119,11 @@ void BeamElementItem::evaluatePencil(const PencilPass (&pass)[kPencilPasses], in
   const double l = beam_->elementLength();
   ancf::Vec8 f, fd;
   ancf::Mat8 K, Kq, Dv;
-  ancf::internalForce(sec, l, q, f, &K);
-  ancf::dampingForce(sec, l, q, v, fd, &Kq, &Dv);
+  // At rest (the eigen-analysis' v = 0) one kernel for both; else the two.
+  if (!ancf::stiffnessAndDampingAtRest(sec, l, q, v, K, Kq, Dv)) {
+    ancf::internalForce(sec, l, q, f, &K);
+    ancf::dampingForce(sec, l, q, v, fd, &Kq, &Dv);
+  }
   Eigen::Map<RowMajor8> Ja(A.J);
   Ja = A.ctx.kin.cA * (*mass_) + A.ctx.kin.cQ * K;
   Ja += A.ctx.kin.cQ * Kq;

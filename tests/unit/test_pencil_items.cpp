@@ -5,7 +5,8 @@
 // equal bit for bit, at the pencil's own state (v = 0), at states with
 // velocities, and when the passes' q differ in the sign of a zero entry
 // (where the items fall back to separate kernels). Also the damping kernel's
-// rest shortcut (Kq set to zero at edot = 0) against the summed Kq.
+// rest shortcut (Kq set to zero at edot = 0) against the summed Kq, and the
+// beam's fused kernel at rest (stiffnessAndDampingAtRest) against the two.
 #include "boomdyn/ancf_beam.hpp"
 #include "boomdyn/beam_element_item.hpp"
 #include "boomdyn/elastic_rope.hpp"
@@ -115,7 +116,7 @@ TEST(PencilItems, DampedBeamElementEqualsThreeEvaluationsBitwise)
     }
 }
 
-TEST(PencilItems, DampingKernelAtRestSetsTheSummedZeros)
+TEST(PencilItems, DampingKernelAtRestSetsTheSummedZerosAndTheFusedKernelAgrees)
 {
   std::mt19937 rng(3);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
@@ -135,6 +136,14 @@ TEST(PencilItems, DampingKernelAtRestSetsTheSummedZeros)
         EXPECT_EQ(std::memcmp(f1.data(), f2.data(), sizeof(double) * 8), 0);
         EXPECT_EQ(std::memcmp(K1.data(), K2.data(), sizeof(double) * 64), 0) << "trial " << trial;
         EXPECT_EQ(std::memcmp(D1.data(), D2.data(), sizeof(double) * 64), 0) << "trial " << trial;
+        // The fused kernel of the pencil: internalForce's tangent and these, bitwise.
+        ancf::Mat8 Kt, Kt3, K3, D3;
+        ancf::Vec8 f;
+        ancf::internalForce(sec, l, e, f, &Kt);
+        ASSERT_TRUE(ancf::stiffnessAndDampingAtRest(sec, l, e, rest, Kt3, K3, D3)) << "trial " << trial;
+        EXPECT_EQ(std::memcmp(Kt.data(), Kt3.data(), sizeof(double) * 64), 0) << "trial " << trial;
+        EXPECT_EQ(std::memcmp(K2.data(), K3.data(), sizeof(double) * 64), 0) << "trial " << trial;
+        EXPECT_EQ(std::memcmp(D2.data(), D3.data(), sizeof(double) * 64), 0) << "trial " << trial;
       }
     }
 }
