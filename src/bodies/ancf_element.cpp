@@ -469,6 +469,15 @@ namespace {
 // Below this, no product of two factors overflows (the rest-rate test below).
 inline bool moderate(double x) { return std::abs(x) < 1e100; }
 template <typename V> bool moderate(const V &v) { return (v.array().abs() < 1e100).all(); }
+// Every entry zero (either sign); a plain loop that stops at the first
+// nonzero (a Newton tangent's rates): Eigen's all() over the comparison was
+// an out-of-line call on every tangent of a damped element.
+inline bool allZero(const Vec8 &x)
+{
+  for (int i = 0; i < 8; ++i)
+    if (x[i] != 0.0) return false;
+  return true;
+}
 
 // dampingForce; restShortcut: at zero rate, Kq is set to zero instead of
 // summed (see there).
@@ -501,7 +510,7 @@ double dampingForceImpl(const Section &sec, double l, const Vec8 &e, const Vec8 
   // +0. Kq is then +0 everywhere, bit for bit what the sums give, and is left
   // as set above; the sums are what dfd/de cost (about 2/3 of a tangent
   // evaluation). A factor out of range: the full sums (restShortcut false).
-  const bool atRest = Kq && restShortcut && (edot.array() == 0.0).all();
+  const bool atRest = Kq && restShortcut && allZero(edot);
   bool restExact = atRest;
   for (int p = 0; p < g.size; ++p) {
     const QuadPoint &q = g.points[p];
@@ -571,7 +580,7 @@ double dampingForce(const Section &sec, double l, const Vec8 &e, const Vec8 &edo
 bool stiffnessAndDampingAtRest(const Section &sec, double l, const Vec8 &e, const Vec8 &edot, Mat8 &Kt, Mat8 &Kq,
                                Mat8 &Dv)
 {
-  if (!(edot.array() == 0.0).all()) return false;
+  if (!allZero(edot)) return false;
   // internalForce's tangent and dampingForce's matrices in one loop over the
   // points: r', r'', the projection, 1/|r'|^2, K and the gradients g_e =
   // dEps, g_K = dK are the same expressions on the same values in both, so
