@@ -64,7 +64,19 @@ void internalForce(const Section &sec, double l, const Vec8 &e, Vec8 &f, Mat8 *K
 // edot . fd = ∫ EA etaA epsdot^2 + EI etaB Kdot^2 dx >= 0. If Kq != nullptr it
 // receives dfd/de (not symmetric), if Dv != nullptr dfd/dedot (symmetric,
 // positive semi-definite). fd may alias e or edot.
+// At edot = 0 (all entries zero) Kq is set to zero, not summed: bit for bit
+// the sum's value, every term being a signed zero (ancf_element.cpp).
 double dampingForce(const Section &sec, double l, const Vec8 &e, const Vec8 &edot, Vec8 &fd, Mat8 *Kq, Mat8 *Dv);
+// dampingForce with Kq summed at every edot (tests compare the two).
+double dampingForceSummed(const Section &sec, double l, const Vec8 &e, const Vec8 &edot, Vec8 &fd, Mat8 *Kq,
+                          Mat8 *Dv);
+
+// At edot = 0 (all entries zero; the eigen-analysis' pencil): Kt of
+// internalForce and Kq (zero), Dv of dampingForce in one pass, bit-identical
+// to those calls. False (outputs undefined) when edot is not zero or a factor
+// is out of the range of dampingForce's rest shortcut: call the two.
+bool stiffnessAndDampingAtRest(const Section &sec, double l, const Vec8 &e, const Vec8 &edot, Mat8 &Kt, Mat8 &Kq,
+                               Mat8 &Dv);
 
 // internalForce(sec, l, e, f, nullptr) and dampingForce(sec, l, e, edot, fd,
 // nullptr, nullptr) in one pass (shared shape functions and strains), with

@@ -113,7 +113,8 @@ private:
   Vec localSource_ = nullptr;         // between beginLocal and endLocal: x or xLocal_
   const PetscScalar *xl_ = nullptr;   // its array
   Kinematics kin_;                    // the map's coefficients
-  std::vector<double> bq_, bv_, ba_, bl_, br_; // per-item buffers (the Jacobian goes into cooV_)
+  std::vector<double> bq_, bv_, ba_, bl_, br_; // per-item buffers (the Jacobian goes into cooV_; q, v, a
+                                               // hold kPencilPasses blocks for evaluatePencil)
 };
 
 } // namespace boomdyn

@@ -17,6 +17,9 @@ public:
   std::string name() const override;
   void coordinates(std::vector<PetscInt> &dofs) const override;
   void evaluate(const AssemblyContext &ctx, const ItemValues &in, double *residual, double *J) const override;
+  // A damped element: one damping kernel call for the stiffness pass's
+  // dfd/dq and the damping pass's dfd/dv, the mass pass without any kernel.
+  void evaluatePencil(const PencilPass (&pass)[kPencilPasses], int n, double *scratch) const override;
   void energy(const AssemblyContext &ctx, const ItemValues &in, EnergyParts &e) const override;
   bool energyAndDampingForce(const AssemblyContext &ctx, const ItemValues &in, EnergyParts &e,
                              double *f) const override;

@@ -26,6 +26,8 @@ public:
   std::string name() const override { return name_; }
   void coordinates(std::vector<PetscInt> &dofs) const override { path_.coordinates(dofs); }
   void evaluate(const AssemblyContext &ctx, const ItemValues &in, double *residual, double *J) const override;
+  // The path's geometry and Hessian once for the passes at the same q.
+  void evaluatePencil(const PencilPass (&pass)[kPencilPasses], int n, double *scratch) const override;
   // Strain energy (EA/(2 L0)) (l - L0)^2 while l > L0; dissipation T s' - (EA/L0)(l - L0)+ s' >= 0
   // (s = l - L0); input power: the winch power.
   void energy(const AssemblyContext &ctx, const ItemValues &in, EnergyParts &e) const override;
@@ -58,6 +60,10 @@ public:
   bool hasWinch() const { return winch_; }
 
 private:
+  // evaluate() after the path's geometry g at in.q and, with J, its Hessian lqq.
+  void evaluateAt(const AssemblyContext &ctx, const ItemValues &in, const RopePath::Geometry &g,
+                  const Eigen::MatrixXd &lqq, double *residual, double *J) const;
+
   std::string name_;
   RopePath path_;
   double EA_, L0_, c_;

@@ -42,6 +42,8 @@ public:
   std::string name() const override { return joint_->name() + ".pad"; }
   void coordinates(std::vector<PetscInt> &dofs) const override { joint_->coordinates(dofs); }
   void evaluate(const AssemblyContext &ctx, const ItemValues &in, double *residual, double *J) const override;
+  // The gap and its derivatives once for the passes at the same q.
+  void evaluatePencil(const PencilPass (&pass)[kPencilPasses], int n, double *scratch) const override;
   void energy(const AssemblyContext &ctx, const ItemValues &in, EnergyParts &parts) const override;
 
   // State at q, v over coordinates() (v may be null: no damping part).
@@ -60,6 +62,9 @@ public:
   static constexpr double gapStiffness = 1e-4;
 
 private:
+  // evaluate() after the gap d, d_q (dq_) and, with J, d_qq (dqq_) at in.q.
+  void evaluateAtGap(const AssemblyContext &ctx, const ItemValues &in, double d, double *residual, double *J) const;
+
   std::shared_ptr<const SlidingJoint> joint_;
   PadSpec spec_;
   // d_q and d_qq of the last evaluation, kept so that their arrays are not

@@ -17,6 +17,7 @@
 
 #include <petscsys.h>
 
+#include <algorithm>
 #include <string>
 #include <vector>
 
@@ -81,6 +82,19 @@ struct EnergyParts {
   double roundoff = 0;
 };
 
+// One of the eigen-analysis' three Jacobian passes over an item
+// (Assembler::evaluatePencil): its context, the item's values under that
+// pass's map, and its n x n block (row-major, zeroed on entry; null: the
+// matrix is not wanted).
+struct PencilPass {
+  AssemblyContext ctx;
+  ItemValues in;
+  double *J = nullptr;
+};
+// The passes, in this order: stiffness A (cQ = 1, constraint blocks),
+// mass B (cA = 1), damping D (cV = 1).
+constexpr int kPencilPasses = 3;
+
 class WorkItem {
 public:
   virtual ~WorkItem() = default;
@@ -91,6 +105,14 @@ public:
   // Add the residual (size n = #coordinates + #rows) and, if J is not null,
   // the Jacobian d(residual)/dx (n x n, row-major) for the context.
   virtual void evaluate(const AssemblyContext &ctx, const ItemValues &in, double *residual, double *J) const = 0;
+  // The eigen-analysis' blocks in one call: every pass[p].J (when not null)
+  // must receive bitwise what evaluate(pass[p].ctx, pass[p].in, residual,
+  // pass[p].J) adds to it; n is the block size and scratch an array of n
+  // entries for the residuals, which are discarded. The default makes those
+  // evaluate() calls (scratch zeroed before each); items override it where
+  // the passes can share work (the same kernel on the same values: a beam's
+  // strains, a rope's path geometry, a pad's gap).
+  virtual void evaluatePencil(const PencilPass (&pass)[kPencilPasses], int n, double *scratch) const;
   // Diagnostics at a state.
   virtual void energy(const AssemblyContext &, const ItemValues &, EnergyParts &) const {}
   virtual double constraintViolation(const AssemblyContext &, const ItemValues &) const { return 0; }
@@ -126,5 +148,14 @@ public:
     (void)massDiag, (void)stiffDiag, (void)count;
   }
 };
+
+inline void WorkItem::evaluatePencil(const PencilPass (&pass)[kPencilPasses], int n, double *scratch) const
+{
+  for (const PencilPass &p : pass) {
+    if (!p.J) continue;
+    std::fill(scratch, scratch + n, 0.0);
+    evaluate(p.ctx, p.in, scratch, p.J);
+  }
+}
 
 } // namespace boomdyn

@@ -483,7 +483,25 @@ void internalForce(const Section &sec, double l, const Vec8 &e, Vec8 &f, Mat8 *K
   for (int j = 0; j < proj.n; ++j) Kt->noalias() += (EAproj * l) * proj.grad[j] * proj.grad[j].transpose();
 }
 
-double dampingForce(const Section &sec, double l, const Vec8 &e, const Vec8 &edot, Vec8 &fd, Mat8 *Kq, Mat8 *Dv)
+namespace {
+
+// Below this, no product of two factors overflows (the rest-rate test below).
+inline bool moderate(double x) { return std::abs(x) < 1e100; }
+template <typename V> bool moderate(const V &v) { return (v.array().abs() < 1e100).all(); }
+// Every entry zero (either sign); a plain loop that stops at the first
+// nonzero (a Newton tangent's rates): Eigen's all() over the comparison was
+// an out-of-line call on every tangent of a damped element.
+inline bool allZero(const Vec8 &x)
+{
+  for (int i = 0; i < 8; ++i)
+    if (x[i] != 0.0) return false;
+  return true;
+}
+
+// dampingForce; restShortcut: at zero rate, Kq is set to zero instead of
+// summed (see there).
+double dampingForceImpl(const Section &sec, double l, const Vec8 &e, const Vec8 &edot, Vec8 &fd, Mat8 *Kq, Mat8 *Dv,
+                        bool restShortcut)
 {
   // The axial strain rate on the points of the axial strain, so that D stays etaA K_axial.
   const QuadRule &g = quadRule(sec.axialIntegration);
@@ -501,6 +519,18 @@ double dampingForce(const Section &sec, double l, const Vec8 &e, const Vec8 &edo
   Eigen::Matrix4d P, Q;
   if (Kq) P.setZero(), Q.setZero(), Kq->setZero();
   if (Dv) Dv->setZero();
+  // At rest (edot all zeros, either sign: the eigen-analysis' damping pencil
+  // is taken at v = 0) r1d = r2d = +0 exactly (sums from zero), and so
+  // epsdot, Kdot, hE, hK, bd, alphadot, gradDot and the rate of the projected
+  // strain are signed zeros: every term summed into Kq, P and Q is a product
+  // with a zero factor and is itself a signed zero as long as the other
+  // factors are finite and no product of two of them overflows (all below
+  // 1e100, checked point by point), and sums from +0 of signed zeros stay
+  // +0. Kq is then +0 everywhere, bit for bit what the sums give, and is left
+  // as set above; the sums are what dfd/de cost (about 2/3 of a tangent
+  // evaluation). A factor out of range: the full sums (restShortcut false).
+  const bool atRest = Kq && restShortcut && allZero(edot);
+  bool restExact = atRest;
   for (int p = 0; p < g.size; ++p) {
     const QuadPoint &q = g.points[p];
     const Eigen::Vector4d &s1 = shapes.s1[p], &s2 = shapes.s2[p];
@@ -526,6 +556,12 @@ double dampingForce(const Section &sec, double l, const Vec8 &e, const Vec8 &edo
     fl += (ca * epsdot) * gE + (cb * Kdot) * gK;
     if (Dv) Dv->noalias() += ca * gE * gE.transpose() + cb * gK * gK.transpose();
     if (!Kq) continue;
+    if (atRest) {
+      restExact = restExact && moderate(ca) && moderate(cb) && moderate(iJ2) && moderate(K) && moderate(r1) &&
+                  moderate(r2) && moderate(s1) && moderate(s2) && moderate(gE) && moderate(gK) &&
+                  (!proj.n || moderate(wx * (1.0 - proj.gamma) * sec.EA * sec.etaA));
+      continue;
+    }
     const Vec8 hE = expand(s1, r1d);
     const Vec8 hK = (expand(s1, rotCW(r2d)) - expand(s2, rotCW(r1d)) - 2.0 * K * hE - 2.0 * Kdot * gE -
                      2.0 * epsdot * gK) *
@@ -543,11 +579,97 @@ double dampingForce(const Section &sec, double l, const Vec8 &e, const Vec8 &edo
     fl += (cproj * proj.alphaDot[j]) * proj.grad[j];
     power += cproj * proj.alphaDot[j] * proj.alphaDot[j];
     if (Dv) Dv->noalias() += cproj * proj.grad[j] * proj.grad[j].transpose();
-    if (Kq) Kq->noalias() += cproj * proj.grad[j] * proj.gradDot[j].transpose();
+    if (atRest) restExact = restExact && moderate(cproj) && moderate(proj.grad[j]);
+    else if (Kq) Kq->noalias() += cproj * proj.grad[j] * proj.gradDot[j].transpose();
   }
+  // Before fd is written (it may alias e or edot).
+  if (atRest && !restExact) return dampingForceImpl(sec, l, e, edot, fd, Kq, Dv, false);
   fd = fl;
-  if (Kq) addKronecker(P, Q, *Kq);
+  if (Kq && !atRest) addKronecker(P, Q, *Kq);
   return power;
+}
+
+} // namespace
+
+double dampingForce(const Section &sec, double l, const Vec8 &e, const Vec8 &edot, Vec8 &fd, Mat8 *Kq, Mat8 *Dv)
+{
+  return dampingForceImpl(sec, l, e, edot, fd, Kq, Dv, true);
+}
+
+bool stiffnessAndDampingAtRest(const Section &sec, double l, const Vec8 &e, const Vec8 &edot, Mat8 &Kt, Mat8 &Kq,
+                               Mat8 &Dv)
+{
+  if (!allZero(edot)) return false;
+  // internalForce's tangent and dampingForce's matrices in one loop over the
+  // points: r', r'', the projection, 1/|r'|^2, K and the gradients g_e =
+  // dEps, g_K = dK are the same expressions on the same values in both, so
+  // they are formed once; every accumulator (Kt, P, Q of the stiffness; Dv)
+  // receives the terms of its own kernel in its order. Not formed: the
+  // forces and the power (not asked for), and Kq, zero at rest under
+  // dampingForce's checks, which are made here on the same factors.
+  const QuadRule &g = quadRule(sec.axialIntegration);
+  const ShapeTable &shapes = shapeTable(g, l);
+  Vec2 slopes[kGaussPoints + kReducedAxialPoints], curvatures[kGaussPoints + kReducedAxialPoints];
+  for (int p = 0; p < g.size; ++p) {
+    Vec2 r1 = Vec2::Zero(), r2 = Vec2::Zero();
+    for (int k = 0; k < 4; ++k) {
+      r1 += shapes.s1[p][k] * e.segment<2>(2 * k);
+      r2 += shapes.s2[p][k] * e.segment<2>(2 * k);
+    }
+    slopes[p] = r1, curvatures[p] = r2;
+  }
+  // With edot: alpha and the gradients as without it (internalForce's call),
+  // and the rates that dampingForce's call adds.
+  const AxialProjection proj = projectAxialStrain(sec, l, shapes, e, &edot, true,
+                                                  sec.axialIntegration == AxialIntegration::Assumed ? slopes : nullptr);
+  const double EAproj = (1.0 - proj.gamma) * sec.EA;
+  const double cproj = (1.0 - proj.gamma) * sec.EA * sec.etaA * l;
+  Eigen::Matrix4d P, Q;
+  P.setZero(), Q.setZero();
+  Kt.setZero();
+  Kq.setZero();
+  Dv.setZero();
+  bool restExact = true;
+  for (int p = 0; p < g.size; ++p) {
+    const QuadPoint &q = g.points[p];
+    const Eigen::Vector4d &s1 = shapes.s1[p], &s2 = shapes.s2[p];
+    const Vec2 &r1 = slopes[p], &r2 = curvatures[p];
+    const double wx = q.w * l;
+    const double J2 = r1.squaredNorm(), iJ2 = 1.0 / J2;
+    const double K = cross(r1, r2) * iJ2;
+    // Stiffness (internalForce).
+    const double EA = q.axial * proj.gamma * sec.EA, EI = q.bending * sec.EI;
+    const double eps = 0.5 * (J2 - 1.0);
+    const double N = EA * eps + (proj.n ? EAproj * proj.strain(q.xi) : 0.0);
+    const double a = N - 2.0 * EI * K * K * iJ2, b = EI * K * iJ2;
+    const Vec8 dEps = expand(s1, r1);
+    const Vec8 dK = (expand(s1, rotCW(r2)) - expand(s2, rotCW(r1)) - 2.0 * K * dEps) * iJ2;
+    Eigen::Matrix<double, 8, 2> G;
+    G << dEps, dK;
+    Eigen::Matrix2d Mw;
+    Mw << wx * EA, -2.0 * wx * b, -2.0 * wx * b, wx * EI;
+    Kt.noalias() += G * Mw * G.transpose();
+    P.noalias() += (wx * a) * s1 * s1.transpose();
+    Q.noalias() += (wx * b) * (s1 * s2.transpose() - s2 * s1.transpose());
+    // Damping (dampingForce): g_e = dEps, g_K = dK.
+    const double ca = wx * proj.gamma * sec.EA * sec.etaA * q.axial, cb = wx * sec.EI * sec.etaB * q.bending;
+    Dv.noalias() += ca * dEps * dEps.transpose() + cb * dK * dK.transpose();
+    restExact = restExact && moderate(ca) && moderate(cb) && moderate(iJ2) && moderate(K) && moderate(r1) &&
+                moderate(r2) && moderate(s1) && moderate(s2) && moderate(dEps) && moderate(dK) &&
+                (!proj.n || moderate(wx * (1.0 - proj.gamma) * sec.EA * sec.etaA));
+  }
+  addKronecker(P, Q, Kt);
+  for (int j = 0; j < proj.n; ++j) Kt.noalias() += (EAproj * l) * proj.grad[j] * proj.grad[j].transpose();
+  for (int j = 0; j < proj.n; ++j) {
+    Dv.noalias() += cproj * proj.grad[j] * proj.grad[j].transpose();
+    restExact = restExact && moderate(cproj) && moderate(proj.grad[j]);
+  }
+  return restExact;
+}
+
+double dampingForceSummed(const Section &sec, double l, const Vec8 &e, const Vec8 &edot, Vec8 &fd, Mat8 *Kq, Mat8 *Dv)
+{
+  return dampingForceImpl(sec, l, e, edot, fd, Kq, Dv, false);
 }
 
 double internalAndDampingForce(const Section &sec, double l, const Vec8 &e, const Vec8 &edot, Vec8 &f, Vec8 &fd)

@@ -1,6 +1,7 @@
 #include "boomdyn/beam_element_item.hpp"
 
 #include <cmath>
+#include <cstring>
 #include <limits>
 
 namespace boomdyn {
@@ -113,6 +114,45 @@ void BeamElementItem::evaluate(const AssemblyContext &ctx, const ItemValues &in,
   inertiaAndForces(in.a, f, ctx.loadFactor, residual);
   // Undamped sections skip this entirely (no cost, results bit-identical).
   if (sec.damped()) addDamping(ctx, in, residual, J);
+}
+
+void BeamElementItem::evaluatePencil(const PencilPass (&pass)[kPencilPasses], int n, double *scratch) const
+{
+  const PencilPass &A = pass[0], &B = pass[1], &D = pass[2];
+  const ancf::Section &sec = beam_->section();
+  const auto same = [](const double *x, const double *y) { return std::memcmp(x, y, 8 * sizeof(double)) == 0; };
+  // What evaluate() does in the three passes of Assembler::evaluatePencil,
+  // Jacobian only (the residual is discarded): A (cQ != 0, cV = 0) takes the
+  // tangent path, K and then dfd/dq; B and D (cQ = 0) the mass-or-damping
+  // path, dfd/dv for cV != 0. A's and D's damping kernels run on the same
+  // (q, v) (bitwise: the maps differ only in the sign of zero entries, and
+  // then this falls back) and one call gives both matrices, each summed as
+  // in its own call. Any other arrangement: the three evaluate() calls.
+  const bool shaped = sec.damped() && A.J && D.J && !A.ctx.residualWanted && !B.ctx.residualWanted &&
+                      !D.ctx.residualWanted && A.ctx.kin.cQ != 0.0 && A.ctx.kin.cV == 0.0 &&
+                      B.ctx.kin.cQ == 0.0 && B.ctx.kin.cV == 0.0 && D.ctx.kin.cQ == 0.0 &&
+                      D.ctx.kin.cV != 0.0 && same(A.in.q, D.in.q) && same(A.in.v, D.in.v);
+  if (!shaped) {
+    WorkItem::evaluatePencil(pass, n, scratch);
+    return;
+  }
+  using RowMajor8 = Eigen::Matrix<double, 8, 8, Eigen::RowMajor>;
+  const Eigen::Map<const ancf::Vec8> q(A.in.q), v(A.in.v);
+  const double l = beam_->elementLength();
+  ancf::Vec8 f, fd;
+  ancf::Mat8 K, Kq, Dv;
+  // At rest (the eigen-analysis' v = 0) one kernel for both; else the two.
+  if (!ancf::stiffnessAndDampingAtRest(sec, l, q, v, K, Kq, Dv)) {
+    ancf::internalForce(sec, l, q, f, &K);
+    ancf::dampingForce(sec, l, q, v, fd, &Kq, &Dv);
+  }
+  Eigen::Map<RowMajor8> Ja(A.J);
+  Ja = A.ctx.kin.cA * (*mass_) + A.ctx.kin.cQ * K;
+  Ja += A.ctx.kin.cQ * Kq;
+  if (B.J) Eigen::Map<RowMajor8>{B.J} = B.ctx.kin.cA * (*mass_);
+  Eigen::Map<RowMajor8> Jd(D.J);
+  Jd = D.ctx.kin.cA * (*mass_);
+  Jd += D.ctx.kin.cV * Dv;
 }
 
 void BeamElementItem::addDamping(const AssemblyContext &ctx, const ItemValues &in, double *residual, double *J) const

@@ -1,5 +1,8 @@
 #include "boomdyn/elastic_rope.hpp"
 
+#include <algorithm>
+#include <cstring>
+
 namespace boomdyn {
 
 ElasticRope::ElasticRope(std::string name, RopePath path, double EA, double restLength, double damping,
@@ -37,14 +40,45 @@ void ElasticRope::evaluate(const AssemblyContext &ctx, const ItemValues &in, dou
   // l and l_q from the path's own Geometry (no arrays allocated per
   // residual); the Hessian only for the tangent.
   const RopePath::Geometry &g = path_.geometry(in.q);
-  const Eigen::RowVectorXd &lq = g.lq;
-  const double l = g.length;
   Eigen::MatrixXd lqq;
   if (J) {
     lqq.setZero(n, n);
     lqq += 1.0 * RopePath::segmentHessian(g);
     path_.addCurvature(in.q, g, 1.0, lqq);
   }
+  evaluateAt(ctx, in, g, lqq, residual, J);
+}
+
+void ElasticRope::evaluatePencil(const PencilPass (&pass)[kPencilPasses], int n, double *scratch) const
+{
+  // Geometry and Hessian (most of a pass) once for the passes whose q are
+  // bitwise the same (the maps differ only in the sign of zero entries; then
+  // one geometry per pass), each from the same code as evaluate(); the rest
+  // of each pass is evaluate()'s own (evaluateAt) on the same values. n: the
+  // path's coordinates (a rope has no multiplier rows).
+  const double *at = nullptr;
+  const RopePath::Geometry *g = nullptr;
+  Eigen::MatrixXd lqq;
+  for (const PencilPass &p : pass) {
+    if (!p.J) continue;
+    if (!at || std::memcmp(at, p.in.q, n * sizeof(double)) != 0) {
+      g = &path_.geometry(p.in.q);
+      lqq.setZero(n, n);
+      lqq += 1.0 * RopePath::segmentHessian(*g);
+      path_.addCurvature(p.in.q, *g, 1.0, lqq);
+      at = p.in.q;
+    }
+    std::fill(scratch, scratch + n, 0.0);
+    evaluateAt(p.ctx, p.in, *g, lqq, scratch, p.J);
+  }
+}
+
+void ElasticRope::evaluateAt(const AssemblyContext &ctx, const ItemValues &in, const RopePath::Geometry &g,
+                             const Eigen::MatrixXd &lqq, double *residual, double *J) const
+{
+  const int n = path_.numCoordinates();
+  const Eigen::RowVectorXd &lq = g.lq;
+  const double l = g.length;
   const Eigen::Map<const Eigen::VectorXd> v(in.v, n);
   const double L0 = restLength(ctx.t), k = EA_ / L0;
   const double rate = lq.dot(v), f = k * (l - L0) + c_ * (rate - payout_.rate(ctx.t));

@@ -1,6 +1,7 @@
 #include "boomdyn/pad_contact.hpp"
 
 #include <cmath>
+#include <cstring>
 
 namespace boomdyn {
 
@@ -52,10 +53,39 @@ void PadContact::evaluate(const AssemblyContext &ctx, const ItemValues &in, doub
   double d;
   // The pad's own work arrays (no heap traffic per residual); the Hessian
   // only for the tangent.
-  Eigen::VectorXd &dq = dq_;
-  Eigen::MatrixXd &dqq = dqq_;
-  if (J) joint_->normalGap(in.q, d, dq, dqq);
-  else joint_->normalGap(in.q, d, dq);
+  if (J) joint_->normalGap(in.q, d, dq_, dqq_);
+  else joint_->normalGap(in.q, d, dq_);
+  evaluateAtGap(ctx, in, d, residual, J);
+}
+
+void PadContact::evaluatePencil(const PencilPass (&pass)[kPencilPasses], int n, double *scratch) const
+{
+  // The passes that reach the gap (all but the mass pass, see evaluate())
+  // share one normalGap when their q are bitwise the same (the maps differ
+  // only in the sign of zero entries; then one gap per pass). The rest of
+  // each pass is evaluate()'s own code (evaluateAtGap) on the same values.
+  // n: the pad's coordinates (it has no multiplier rows).
+  const double *gapAt = nullptr;
+  double d = 0;
+  for (const PencilPass &p : pass) {
+    if (!p.J) continue;
+    const Kinematics &k = p.ctx.kin;
+    if (k.cQ == 0 && k.cV == 0 && !p.ctx.accelerationLevel) continue;
+    if (!gapAt || std::memcmp(gapAt, p.in.q, n * sizeof(double)) != 0) {
+      joint_->normalGap(p.in.q, d, dq_, dqq_);
+      gapAt = p.in.q;
+    }
+    std::fill(scratch, scratch + n, 0.0);
+    evaluateAtGap(p.ctx, p.in, d, scratch, p.J);
+  }
+}
+
+void PadContact::evaluateAtGap(const AssemblyContext &ctx, const ItemValues &in, double d, double *residual,
+                               double *J) const
+{
+  const Kinematics &k = ctx.kin;
+  const Eigen::VectorXd &dq = dq_;
+  const Eigen::MatrixXd &dqq = dqq_;
   const int side = sideOf(d, spec_.clearance);
   const Eigen::Index n = dq.size();
   if (side == 0) { // free within the clearance: no force, no stiffness ...

@@ -120,7 +120,9 @@ PetscErrorCode Assembler::buildPattern()
     const auto it = localOf.find(g);
     if (it != localOf.end()) firstOrder_[it->second] = 1;
   }
-  for (auto *b : {&bq_, &bv_, &ba_, &bl_, &br_}) b->assign(maxN, 0.0);
+  // q, v, a: one block per pencil pass (evaluatePencil); the gathers use the first.
+  for (auto *b : {&bq_, &bv_, &ba_}) b->assign(kPencilPasses * static_cast<std::size_t>(maxN), 0.0);
+  for (auto *b : {&bl_, &br_}) b->assign(maxN, 0.0);
   PetscFunctionReturn(0);
 }
 
@@ -277,15 +279,16 @@ PetscErrorCode Assembler::evaluatePencil(const AssemblyContext &context, Vec x, 
   //   B: qc = x, vc = ac = 0, cA = 1, cQ = cV = cZ = 0, no constraint blocks;
   //   D: qc = x, vc = -x (0 for first-order states), ac = 0, cV = 1,
   //      cQ = cZ = cA = 0, no constraint blocks.
-  // What one pass saves: the item loop and gathers, and the D pass's own
-  // pencil state; each item is still evaluated once per matrix (WorkItem
-  // has one Jacobian per call).
+  // One pass over the items: each item's values of the three maps are
+  // gathered together and the item fills its three blocks in one call
+  // (WorkItem::evaluatePencil: the three evaluate() calls unless the item
+  // shares work between them, bitwise to the same blocks).
   struct Pass {
     AssemblyContext ctx;
     Mat J;
     std::vector<PetscScalar> values;
   };
-  Pass passes[3] = {{context, A, {}}, {context, B, {}}, {context, D, {}}};
+  Pass passes[kPencilPasses] = {{context, A, {}}, {context, B, {}}, {context, D, {}}};
   passes[0].ctx.kin = {1.0, 0.0, 0.0, 0.0};
   passes[1].ctx.kin = {0.0, 0.0, 1.0, 0.0};
   passes[2].ctx.kin = {0.0, 1.0, 0.0, 0.0};
@@ -297,27 +300,36 @@ PetscErrorCode Assembler::evaluatePencil(const AssemblyContext &context, Vec x, 
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(logEvents().assembly, 0, 0, 0, 0));
   PetscCall(beginLocal(passes[0].ctx, x));
-  ItemValues vals;
-  vals.q = bq_.data(), vals.v = bv_.data(), vals.a = ba_.data();
+  // Per pass its own q, v, a arrays (bq_, bv_, ba_ hold kPencilPasses
+  // blocks of the largest item's size: pencil buffers of setUp).
+  const std::size_t stride = bq_.size() / kPencilPasses;
+  PencilPass item[kPencilPasses];
+  for (int pass = 0; pass < kPencilPasses; ++pass) {
+    item[pass].ctx = passes[pass].ctx;
+    item[pass].in.q = bq_.data() + pass * stride;
+    item[pass].in.v = bv_.data() + pass * stride;
+    item[pass].in.a = ba_.data() + pass * stride;
+  }
   for (std::size_t k = 0; k < items_.size(); ++k) {
     const int begin = itemStart_[k], n = itemStart_[k + 1] - begin, nc = itemCoords_[k];
     for (int i = 0; i < n; ++i) bl_[i] = xl_[itemLocal_[begin + i]];
-    vals.lambda = bl_.data() + nc;
-    for (int pass = 0; pass < 3; ++pass) {
+    for (int pass = 0; pass < kPencilPasses; ++pass) {
       Pass &p = passes[pass];
+      item[pass].J = p.J ? p.values.data() + cooStart_[k] : nullptr;
+      item[pass].in.lambda = bl_.data() + nc;
       if (!p.J) continue;
       const Kinematics &c = p.ctx.kin;
+      double *bq = bq_.data() + pass * stride, *bv = bv_.data() + pass * stride, *ba = ba_.data() + pass * stride;
       for (int i = 0; i < n; ++i) {
         const PetscInt li = itemLocal_[begin + i];
         const double xi = bl_[i], zero = 0.0;
         const double qc = pass == 0 ? zero : xi, vc = pass == 2 && !firstOrder_[li] ? -xi : zero;
-        bq_[i] = qc + c.cQ * xi;
-        bv_[i] = vc + (firstOrder_[li] ? c.cZ : c.cV) * xi;
-        ba_[i] = zero + c.cA * xi;
+        bq[i] = qc + c.cQ * xi;
+        bv[i] = vc + (firstOrder_[li] ? c.cZ : c.cV) * xi;
+        ba[i] = zero + c.cA * xi;
       }
-      std::fill(br_.begin(), br_.begin() + n, 0.0);
-      items_[k]->evaluate(p.ctx, vals, br_.data(), p.values.data() + cooStart_[k]);
     }
+    items_[k]->evaluatePencil(item, n, br_.data());
   }
   PetscCall(endLocal());
   for (Pass &p : passes)
