@@ -4,6 +4,40 @@
 
 namespace boomdyn {
 
+namespace {
+
+// The compressed rows (CSR arrays) of a sequential AIJ matrix, borrowed for
+// one pass over its entries by the block product and the column read-off.
+struct CompressedRows {
+  Mat M = nullptr;
+  PetscInt rows = 0;
+  const PetscInt *ia = nullptr, *ja = nullptr;
+  const PetscScalar *a = nullptr;
+};
+
+PetscErrorCode borrowRows(Mat M, PetscInt expectedRows, CompressedRows *c)
+{
+  PetscBool done;
+  PetscFunctionBeginUser;
+  c->M = M;
+  PetscCall(MatGetRowIJ(M, 0, PETSC_FALSE, PETSC_FALSE, &c->rows, &c->ia, &c->ja, &done));
+  PetscCheck(done && c->rows == expectedRows, PETSC_COMM_SELF, PETSC_ERR_PLIB,
+             "LocalBlocks: no compressed rows of the matrix");
+  PetscCall(MatSeqAIJGetArrayRead(M, &c->a));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode returnRows(CompressedRows *c)
+{
+  PetscBool done;
+  PetscFunctionBeginUser;
+  PetscCall(MatSeqAIJRestoreArrayRead(c->M, &c->a));
+  PetscCall(MatRestoreRowIJ(c->M, 0, PETSC_FALSE, PETSC_FALSE, &c->rows, &c->ia, &c->ja, &done));
+  PetscFunctionReturn(0);
+}
+
+} // namespace
+
 PetscErrorCode LocalBlocks::setUp(Vec layout)
 {
   PetscInt hi;
@@ -71,13 +105,10 @@ PetscErrorCode LocalBlocks::multiply(Mat M, const Eigen::Ref<const Eigen::Matrix
     for (Eigen::Index j = 0; j < k; ++j) PetscCall(multiply(M, X.col(j).data(), Y.col(j).data()));
     PetscFunctionReturn(0);
   }
-  PetscInt rows;
-  const PetscInt *ia, *ja;
-  PetscBool done;
-  const PetscScalar *a;
-  PetscCall(MatGetRowIJ(M, 0, PETSC_FALSE, PETSC_FALSE, &rows, &ia, &ja, &done));
-  PetscCheck(done && rows == n_, PETSC_COMM_SELF, PETSC_ERR_PLIB, "LocalBlocks: no compressed rows of the matrix");
-  PetscCall(MatSeqAIJGetArrayRead(M, &a));
+  CompressedRows csr;
+  PetscCall(borrowRows(M, n_, &csr));
+  const PetscInt rows = csr.rows, *ia = csr.ia, *ja = csr.ja;
+  const PetscScalar *a = csr.a;
   const Eigen::Index xs = X.outerStride(), ys = Y.outerStride();
   Eigen::Index j = 0;
   // Four columns per pass: the entries and their column indices are loaded
@@ -114,8 +145,7 @@ PetscErrorCode LocalBlocks::multiply(Mat M, const Eigen::Ref<const Eigen::Matrix
     }
   }
   const double nonzeros = (double)ia[rows];
-  PetscCall(MatSeqAIJRestoreArrayRead(M, &a));
-  PetscCall(MatRestoreRowIJ(M, 0, PETSC_FALSE, PETSC_FALSE, &rows, &ia, &ja, &done));
+  PetscCall(returnRows(&csr));
   // As MatMult: 2 flops per nonzero and column (for -log_view).
   PetscCall(PetscLogFlops(2.0 * nonzeros * (double)k));
   PetscFunctionReturn(0);
@@ -134,19 +164,15 @@ PetscErrorCode LocalBlocks::columns(Mat M, PetscInt first, Eigen::Ref<Eigen::Mat
     PetscCall(multiply(M, E, C));
     PetscFunctionReturn(0);
   }
-  PetscInt rows;
-  const PetscInt *ia, *ja;
-  PetscBool done;
-  const PetscScalar *a;
-  PetscCall(MatGetRowIJ(M, 0, PETSC_FALSE, PETSC_FALSE, &rows, &ia, &ja, &done));
-  PetscCheck(done && rows == n_, PETSC_COMM_SELF, PETSC_ERR_PLIB, "LocalBlocks: no compressed rows of the matrix");
-  PetscCall(MatSeqAIJGetArrayRead(M, &a));
+  CompressedRows csr;
+  PetscCall(borrowRows(M, n_, &csr));
+  const PetscInt rows = csr.rows, *ia = csr.ia, *ja = csr.ja;
+  const PetscScalar *a = csr.a;
   C.setZero();
   for (PetscInt i = 0; i < rows; ++i)
     for (PetscInt e = ia[i]; e < ia[i + 1]; ++e)
       if (ja[e] >= first && ja[e] < first + (PetscInt)k) C(i, ja[e] - first) = a[e];
-  PetscCall(MatSeqAIJRestoreArrayRead(M, &a));
-  PetscCall(MatRestoreRowIJ(M, 0, PETSC_FALSE, PETSC_FALSE, &rows, &ia, &ja, &done));
+  PetscCall(returnRows(&csr));
   PetscFunctionReturn(0);
 }
 

@@ -415,6 +415,20 @@ void internalForceOnly(const Section &sec, double l, const QuadRule &g, const Sh
   for (int i = 0; i < 8; ++i) f[i] = fl[i];
 }
 
+// r' and r'' at every point of the rule g, for the kernels with a tangent
+// and the assumed strain's projection (on the same points when it applies).
+void slopesAtPoints(const QuadRule &g, const ShapeTable &shapes, const Vec8 &e, Vec2 *slopes, Vec2 *curvatures)
+{
+  for (int p = 0; p < g.size; ++p) {
+    Vec2 r1 = Vec2::Zero(), r2 = Vec2::Zero();
+    for (int k = 0; k < 4; ++k) {
+      r1 += shapes.s1[p][k] * e.segment<2>(2 * k);
+      r2 += shapes.s2[p][k] * e.segment<2>(2 * k);
+    }
+    slopes[p] = r1, curvatures[p] = r2;
+  }
+}
+
 } // namespace
 
 void internalForce(const Section &sec, double l, const Vec8 &e, Vec8 &f, Mat8 *Kt)
@@ -428,14 +442,7 @@ void internalForce(const Section &sec, double l, const Vec8 &e, Vec8 &f, Mat8 *K
   // r' and r'' at every point, once: the assumed strain's projection (on the
   // same 5 points when it applies) and the loop below both need them.
   Vec2 slopes[kGaussPoints + kReducedAxialPoints], curvatures[kGaussPoints + kReducedAxialPoints];
-  for (int p = 0; p < g.size; ++p) {
-    Vec2 r1 = Vec2::Zero(), r2 = Vec2::Zero();
-    for (int k = 0; k < 4; ++k) {
-      r1 += shapes.s1[p][k] * e.segment<2>(2 * k);
-      r2 += shapes.s2[p][k] * e.segment<2>(2 * k);
-    }
-    slopes[p] = r1, curvatures[p] = r2;
-  }
+  slopesAtPoints(g, shapes, e, slopes, curvatures);
   const AxialProjection proj = projectAxialStrain(sec, l, shapes, e, nullptr, Kt != nullptr,
                                                   sec.axialIntegration == AxialIntegration::Assumed ? slopes : nullptr);
   const double EAproj = (1.0 - proj.gamma) * sec.EA; // EA of the projected strain (0 unless Assumed)
@@ -610,14 +617,7 @@ bool stiffnessAndDampingAtRest(const Section &sec, double l, const Vec8 &e, cons
   const QuadRule &g = quadRule(sec.axialIntegration);
   const ShapeTable &shapes = shapeTable(g, l);
   Vec2 slopes[kGaussPoints + kReducedAxialPoints], curvatures[kGaussPoints + kReducedAxialPoints];
-  for (int p = 0; p < g.size; ++p) {
-    Vec2 r1 = Vec2::Zero(), r2 = Vec2::Zero();
-    for (int k = 0; k < 4; ++k) {
-      r1 += shapes.s1[p][k] * e.segment<2>(2 * k);
-      r2 += shapes.s2[p][k] * e.segment<2>(2 * k);
-    }
-    slopes[p] = r1, curvatures[p] = r2;
-  }
+  slopesAtPoints(g, shapes, e, slopes, curvatures);
   // With edot: alpha and the gradients as without it (internalForce's call),
   // and the rates that dampingForce's call adds.
   const AxialProjection proj = projectAxialStrain(sec, l, shapes, e, &edot, true,
