@@ -3,6 +3,7 @@
 set -euo pipefail
 packages=(
   petsc-dev slepc-dev libhdf5-openmpi-dev libeigen3-dev libyaml-cpp-dev libmetis-dev
+  libsuitesparse-dev  # KLU, called directly by the one-rank solver (PETSc depends on it too)
   openmpi-bin cmake make g++ pkg-config git libgtest-dev libbenchmark-dev
   python3 python3-numpy python3-h5py python3-matplotlib python3-meshio
   clang libclang-rt-14-dev  # the scene-reader fuzzer (tests/fuzz): clang++ and libFuzzer + sanitizer runtimes

@@ -415,11 +415,10 @@ PetscErrorCode DampedModeRefiner::refine(double t, Vec q, Vec lambda, Mat K, Mat
   // u_0, P^{-1} M u_0, u_1, ...
   const int corrected = std::min(count, m); // the wanted ones; the guard modes need no correction
   Block rhs(n, corrected), U(n, corrected), U2(n, corrected);
-  Eigen::VectorXd u(n);
   PetscCall(blocks_.multiply(D, phi.leftCols(corrected), rhs));
-  for (int k = 0; k < corrected && ok; ++k) PetscCall(blocks_.solve(solver, rhs.col(k).data(), U.col(k).data(), &ok));
+  PetscCall(blocks_.solveColumns(solver, rhs, U, &ok));
   if (ok) PetscCall(blocks_.multiply(M, U, rhs));
-  for (int k = 0; k < corrected && ok; ++k) PetscCall(blocks_.solve(solver, rhs.col(k).data(), U2.col(k).data(), &ok));
+  if (ok) PetscCall(blocks_.solveColumns(solver, rhs, U2, &ok));
   for (int k = 0; k < corrected && ok; ++k) {
     PetscCall(sub.append(U.col(k)));
     PetscCall(sub.append(U2.col(k)));
@@ -475,7 +474,9 @@ PetscErrorCode DampedModeRefiner::refine(double t, Vec q, Vec lambda, Mat K, Mat
     Eigen::VectorXd kn, rn;
     PetscCall(blocks_.columnNorms(KX, &kn));
     PetscCall(blocks_.columnNorms(R, &rn));
-    std::vector<Eigen::VectorXd> expansion;
+    // The expansions: the solver applied to the residuals of the pairs that
+    // did not converge (real and imaginary part each), as one block.
+    std::vector<int> expand;
     double worst = 0;
     for (int j = 0; j < o; ++j) {
       RitzPair &pair = pairs[open[j]];
@@ -483,14 +484,11 @@ PetscErrorCode DampedModeRefiner::refine(double t, Vec q, Vec lambda, Mat K, Mat
       pair.residual = knorm > 0 ? std::hypot(rn[j], rn[o + j]) / knorm : 1.0;
       if (a.size()) pair.ar = a.col(j), pair.ai = a.col(o + j);
       pair.converged = pair.residual <= tolerance;
-      if (!pair.converged) {
-        for (const int col : {j, o + j}) {
-          PetscCall(blocks_.solve(solver, R.col(col).data(), u.data(), &ok));
-          if (!ok) break;
-          expansion.push_back(u);
-        }
-      }
+      if (!pair.converged) expand.insert(expand.end(), {j, o + j});
     }
+    Block residuals(n, (Eigen::Index)expand.size()), expansion(n, (Eigen::Index)expand.size());
+    for (std::size_t c = 0; c < expand.size(); ++c) residuals.col(c) = R.col(expand[c]);
+    PetscCall(blocks_.solveColumns(solver, residuals, expansion, &ok));
     for (int k = 0; k < count; ++k) worst = std::max(worst, pairs[k].residual);
     info->iterations = it;
     info->subspace = sub.p;
@@ -504,7 +502,7 @@ PetscErrorCode DampedModeRefiner::refine(double t, Vec q, Vec lambda, Mat K, Mat
     }
     if (worst <= tolerance || worst > before) break; // converged, or past the round-off floor
     before = worst;
-    for (const Eigen::VectorXd &e : expansion) PetscCall(sub.append(e));
+    for (Eigen::Index c = 0; ok && c < expansion.cols(); ++c) PetscCall(sub.append(expansion.col(c)));
   }
   info->worstResidual = bestWorst;
   if (bestWorst <= tolerance) {

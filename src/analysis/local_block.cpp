@@ -1,5 +1,7 @@
 #include "boomdyn/local_block.hpp"
 
+#include "boomdyn/klu_solver.hpp"
+
 #include <algorithm>
 
 namespace boomdyn {
@@ -232,6 +234,31 @@ PetscErrorCode LocalBlocks::solve(KSP ksp, const double *b, double *x, bool *ok)
   }
   PetscCall(VecResetArray(x_));
   PetscCall(VecResetArray(y_));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode LocalBlocks::solveColumns(KSP ksp, const Eigen::Ref<const Eigen::MatrixXd> &B,
+                                         Eigen::Ref<Eigen::MatrixXd> X, bool *ok)
+{
+  PC pc;
+  PetscBool preonly, lu, done = PETSC_FALSE;
+  PetscFunctionBeginUser;
+  *ok = true;
+  if (X.cols() == 0) PetscFunctionReturn(0);
+  PetscCall(KSPGetPC(ksp, &pc));
+  PetscCall(PetscObjectTypeCompare((PetscObject)ksp, KSPPREONLY, &preonly));
+  PetscCall(PetscObjectTypeCompare((PetscObject)pc, PCLU, &lu));
+  if (preonly && lu) {
+    Mat factor;
+    PCFailedReason failed;
+    PetscCall(PCGetFailedReason(pc, &failed));
+    *ok = failed == PC_NOERROR;
+    if (!*ok) PetscFunctionReturn(0);
+    PetscCall(PCFactorGetMatrix(pc, &factor));
+    X = B;
+    PetscCall(kluSolveColumns(factor, X.cols(), X.outerStride(), X.data(), &done));
+  }
+  for (Eigen::Index j = 0; j < X.cols() && !done && *ok; ++j) PetscCall(solve(ksp, B.col(j).data(), X.col(j).data(), ok));
   PetscFunctionReturn(0);
 }
 

@@ -86,7 +86,7 @@ PetscErrorCode ModeRefiner::refine(double t, Vec q, Vec lambda, double target, i
     W.leftCols(locked) = V.leftCols(locked);
     AW.leftCols(locked) = AV.leftCols(locked);
     BW.leftCols(locked) = BV.leftCols(locked);
-    for (int j = locked; j < m && solved; ++j) PetscCall(blocks_.solve(ksp_, BV.col(j).data(), W.col(j).data(), &solved));
+    PetscCall(blocks_.solveColumns(ksp_, BV.rightCols(m - locked), W.rightCols(m - locked), &solved));
     if (!solved) break;
     // The products as blocks: one pass over each matrix for four columns.
     PetscCall(blocks_.multiply(Ac_.get(), W.rightCols(m - locked), AW.rightCols(m - locked)));

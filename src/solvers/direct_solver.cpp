@@ -1,5 +1,7 @@
 #include "boomdyn/direct_solver.hpp"
 
+#include "boomdyn/klu_solver.hpp"
+
 namespace boomdyn {
 
 PetscErrorCode useDirectSolver(KSP ksp)
@@ -13,10 +15,13 @@ PetscErrorCode useDirectSolver(KSP ksp)
   PetscCall(PCSetType(pc, PCLU));
   // One rank: KLU (SuiteSparse) factors these small, banded saddle-point
   // systems about twice as fast as MUMPS (measured on the paper extraction
-  // scene, same results); several ranks: MUMPS, the distributed one.
+  // scene, same results), and boomdyn's interface to it (klu_solver.hpp)
+  // refactors with the last pivot order and solves several columns at once;
+  // several ranks: MUMPS, the distributed one.
   PetscMPIInt size;
   PetscCallMPI(MPI_Comm_size(PetscObjectComm((PetscObject)ksp), &size));
-  PetscCall(PCFactorSetMatSolverType(pc, size == 1 ? MATSOLVERKLU : MATSOLVERMUMPS));
+  if (size == 1) PetscCall(registerKluSolver());
+  PetscCall(PCFactorSetMatSolverType(pc, size == 1 ? MATSOLVERBOOMKLU : MATSOLVERMUMPS));
   // MUMPS reads ICNTL(14) from the options database under the KSP's prefix
   // when the factor is created; give a default only if the user has none.
   PetscCall(KSPGetOptionsPrefix(ksp, &prefix));

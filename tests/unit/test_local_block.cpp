@@ -6,6 +6,7 @@
 // for any rank count.
 #include <gtest/gtest.h>
 
+#include "boomdyn/direct_solver.hpp"
 #include "boomdyn/local_block.hpp"
 
 #include <petscksp.h>
@@ -228,6 +229,35 @@ void checkSolve(Mat A, Vec layout, LocalBlocks &blocks, const Eigen::MatrixXd &V
 TEST_F(LocalBlocksTest, DirectSolveEqualsKspSolve) { checkSolve(A_, layout_, blocks_, V_, true); }
 
 TEST_F(LocalBlocksTest, IterativeSolveEqualsKspSolve) { checkSolve(A_, layout_, blocks_, V_, false); }
+
+// solveColumns() with the default direct solver (useDirectSolver: boomdyn's
+// KLU on one rank, one solve for all columns; MUMPS on several, column by
+// column) gives each column bitwise as solve() does.
+TEST_F(LocalBlocksTest, SolveColumnsEqualsSolveColumnByColumn)
+{
+  PetscHandle<KSP> ksp;
+  ASSERT_EQ(KSPCreate(PETSC_COMM_WORLD, ksp.address()), 0);
+  ASSERT_EQ(KSPSetOperators(ksp, A_, A_), 0);
+  ASSERT_EQ(boomdyn::useDirectSolver(ksp), 0);
+  ASSERT_EQ(KSPSetUp(ksp), 0);
+  const Eigen::Index n = blocks_.localSize();
+  Eigen::MatrixXd X(n, 3), expected(n, 3);
+  bool ok = false;
+  ASSERT_EQ(blocks_.solveColumns(ksp, V_, X, &ok), 0);
+  EXPECT_TRUE(ok);
+  for (int j = 0; j < 3; ++j) {
+    ASSERT_EQ(blocks_.solve(ksp, V_.col(j).data(), expected.col(j).data(), &ok), 0);
+    EXPECT_TRUE(ok);
+  }
+  for (Eigen::Index r = 0; r < n; ++r)
+    for (int j = 0; j < 3; ++j) EXPECT_EQ(X(r, j), expected(r, j)) << r << ", " << j;
+  // A block of some columns of a wider matrix (outer stride > rows).
+  Eigen::MatrixXd wide = Eigen::MatrixXd::Zero(n, 5);
+  ASSERT_EQ(blocks_.solveColumns(ksp, V_.rightCols(2), wide.middleCols(1, 2), &ok), 0);
+  EXPECT_TRUE(ok);
+  EXPECT_TRUE(wide.middleCols(1, 2) == expected.rightCols(2));
+  EXPECT_TRUE(wide.col(0).isZero(0) && wide.rightCols(2).isZero(0));
+}
 
 TEST_F(LocalBlocksTest, FailedFactorizationIsReportedNotSolved)
 {

@@ -1,0 +1,50 @@
+// The one-rank direct solver (issue 18): SuiteSparse KLU behind PETSc's LU
+// interface, registered as the MatSolverType "boomklu". It differs from
+// PETSc's own KLU interface (MATSOLVERKLU) in two ways that the time steps
+// and the tracking analyses pay for every step:
+//  - Refactorization. A numeric factorization of a matrix with the pattern
+//    of the last one reuses that one's pivot order (klu_refactor: no
+//    depth-first searches, no pivot search), about half the cost of
+//    klu_factor at the paper scene's 216 unknowns. Without pivoting it can
+//    be unstable, so the reciprocal pivot growth is checked after each
+//    refactorization and, when it fell below `growth_drop` times that of the
+//    last full factorization, the matrix is factored again with pivoting.
+//  - Several right-hand sides in one solve (kluSolveColumns(), used by the
+//    tracking refinements): one pass over L and U for up to four columns.
+// Options (prefix of the factored matrix, none for boomdyn's matrices):
+//   -mat_boomklu_refactor <reuse>       reuse the pivot order (false: klu_factor every time);
+//                                       default: the value of -boom_jacobian_reuse (true), since
+//                                       both keep history a checkpoint does not hold
+//   -mat_boomklu_growth_drop <1e-2>     accept a refactorization while its reciprocal pivot
+//                                       growth is at least this times the last full one's
+// -pc_factor_mat_solver_type klu (with the solver's prefix) goes back to
+// PETSc's interface. Same ordering (AMD after BTF), pivot tolerance (1e-3)
+// and scaling (none) as PETSc's interface: the first factorization and its
+// solves are bitwise those of MATSOLVERKLU.
+#pragma once
+#include <petscmat.h>
+
+namespace boomdyn {
+
+inline constexpr const char *MATSOLVERBOOMKLU = "boomklu";
+
+// Registers "boomklu" for sequential AIJ matrices (once per PETSc session;
+// useDirectSolver() calls it).
+PetscErrorCode registerKluSolver();
+
+// For a factor made by "boomklu": overwrites the `columns` columns of x
+// (leading dimension ld >= rows) with the solutions of A x = x, all in one
+// KLU solve, and sets *done. For any other factor *done is false and x is
+// untouched (the caller solves column by column). Each column's solution is
+// bitwise that of MatSolve with the same factor.
+PetscErrorCode kluSolveColumns(Mat factor, PetscInt columns, PetscInt ld, double *x, PetscBool *done);
+
+// Counters of the factor's numeric factorizations (for tests and -ksp_view).
+struct KluFactorCounts {
+  PetscInt full = 0;      // klu_factor (with pivoting)
+  PetscInt refactors = 0; // klu_refactor accepted
+  PetscInt rejected = 0;  // klu_refactor whose pivot growth sent it back to klu_factor
+};
+PetscErrorCode kluFactorCounts(Mat factor, KluFactorCounts *counts, PetscBool *isKlu);
+
+} // namespace boomdyn

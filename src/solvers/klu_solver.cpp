@@ -1,0 +1,327 @@
+#include "boomdyn/klu_solver.hpp"
+
+// A MatSolverType is an implementation of PETSc's factor matrix: its
+// operations table and data live behind PETSc's private header, as in
+// PETSc's own interfaces to external solvers.
+#include <petsc/private/matimpl.h>
+#include <klu.h>
+
+#include <type_traits>
+
+namespace boomdyn {
+
+namespace {
+
+static_assert(std::is_same<PetscInt, int>::value, "boomklu calls the int version of KLU (PETSc without 64-bit indices)");
+static_assert(std::is_same<PetscScalar, double>::value, "boomklu is for real scalars");
+
+// KLU factors the compressed columns it is given. PETSc's AIJ rows read as
+// columns are A^T, so KLU factors A^T, A x = b is KLU's transposed solve and
+// A^T x = b its plain one (as in PETSc's interface).
+struct KluFactor {
+  klu_common common;
+  klu_symbolic *symbolic = nullptr;
+  klu_numeric *numeric = nullptr;
+  PetscBool refactor = PETSC_TRUE;
+  PetscReal growthDrop = 1e-2;
+  double fullGrowth = 0; // reciprocal pivot growth of the last klu_factor
+  KluFactorCounts counts;
+
+  void release()
+  {
+    if (numeric) klu_free_numeric(&numeric, &common);
+    if (symbolic) klu_free_symbolic(&symbolic, &common);
+  }
+};
+
+KluFactor *data(Mat F) { return static_cast<KluFactor *>(F->data); }
+
+// The CSR arrays of a sequential AIJ matrix, borrowed.
+struct Rows {
+  Mat A;
+  PetscInt n = 0;
+  const PetscInt *ia = nullptr, *ja = nullptr;
+  const PetscScalar *a = nullptr;
+  PetscErrorCode borrow(Mat m)
+  {
+    PetscBool done;
+    PetscFunctionBeginUser;
+    A = m;
+    PetscCall(MatGetRowIJ(A, 0, PETSC_FALSE, PETSC_FALSE, &n, &ia, &ja, &done));
+    PetscCheck(done, PETSC_COMM_SELF, PETSC_ERR_SUP, "boomklu: the matrix does not give its compressed rows");
+    PetscCall(MatSeqAIJGetArrayRead(A, &a));
+    PetscFunctionReturn(0);
+  }
+  PetscErrorCode giveBack()
+  {
+    PetscBool done;
+    PetscFunctionBeginUser;
+    PetscCall(MatSeqAIJRestoreArrayRead(A, &a));
+    PetscCall(MatRestoreRowIJ(A, 0, PETSC_FALSE, PETSC_FALSE, &n, &ia, &ja, &done));
+    PetscFunctionReturn(0);
+  }
+  int *p() const { return const_cast<int *>(ia); }
+  int *i() const { return const_cast<int *>(ja); }
+  double *x() const { return const_cast<double *>(a); }
+};
+
+PetscErrorCode solveInPlace(Mat F, PetscInt columns, PetscInt ld, double *x, bool transposed)
+{
+  KluFactor *lu = data(F);
+  PetscFunctionBeginUser;
+  const int ok = transposed ? klu_solve(lu->symbolic, lu->numeric, ld, columns, x, &lu->common)
+                            : klu_tsolve(lu->symbolic, lu->numeric, ld, columns, x, &lu->common);
+  PetscCheck(ok, PETSC_COMM_SELF, PETSC_ERR_LIB, "boomklu: KLU solve failed (status %d)", lu->common.status);
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode solveVec(Mat F, Vec b, Vec x, bool transposed)
+{
+  PetscScalar *xa;
+  PetscInt n;
+  PetscFunctionBeginUser;
+  PetscCall(VecCopy(b, x));
+  PetscCall(VecGetLocalSize(x, &n));
+  PetscCall(VecGetArray(x, &xa));
+  PetscCall(solveInPlace(F, 1, n, xa, transposed));
+  PetscCall(VecRestoreArray(x, &xa));
+  PetscCall(PetscLogFlops(2.0 * (data(F)->numeric->lnz + data(F)->numeric->unz)));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode matSolve(Mat F, Vec b, Vec x) { return solveVec(F, b, x, false); }
+PetscErrorCode matSolveTranspose(Mat F, Vec b, Vec x) { return solveVec(F, b, x, true); }
+
+// Dense right-hand sides B, solutions X (MatMatSolve).
+PetscErrorCode matMatSolve(Mat F, Mat B, Mat X)
+{
+  const PetscScalar *b;
+  PetscScalar *x;
+  PetscInt n, k, ldb, ldx;
+  PetscFunctionBeginUser;
+  PetscCall(MatGetSize(B, &n, &k));
+  PetscCall(MatDenseGetLDA(B, &ldb));
+  PetscCall(MatDenseGetLDA(X, &ldx));
+  PetscCall(MatDenseGetArrayRead(B, &b));
+  PetscCall(MatDenseGetArrayWrite(X, &x));
+  for (PetscInt j = 0; j < k; ++j) PetscCall(PetscArraycpy(x + j * ldx, b + j * ldb, n));
+  PetscCall(MatDenseRestoreArrayRead(B, &b));
+  PetscCall(solveInPlace(F, k, ldx, x, false));
+  PetscCall(MatDenseRestoreArrayWrite(X, &x));
+  PetscFunctionReturn(0);
+}
+
+// Full factorization with partial pivoting; records the pivot growth that
+// later refactorizations are measured against.
+PetscErrorCode factorFully(Mat F, const Rows &rows)
+{
+  KluFactor *lu = data(F);
+  PetscFunctionBeginUser;
+  if (lu->numeric) klu_free_numeric(&lu->numeric, &lu->common);
+  lu->numeric = klu_factor(rows.p(), rows.i(), rows.x(), lu->symbolic, &lu->common);
+  ++lu->counts.full;
+  // A library error, as from PETSc's interface: the callers turn it into a
+  // message about the model (NewtonSolver::factor).
+  PetscCheck(lu->numeric, PETSC_COMM_SELF, PETSC_ERR_LIB,
+             "boomklu: KLU factorization failed (status %d%s, column %d)", lu->common.status,
+             lu->common.status == KLU_SINGULAR ? ": singular" : "", lu->common.singular_col);
+  PetscCheck(klu_rgrowth(rows.p(), rows.i(), rows.x(), lu->symbolic, lu->numeric, &lu->common), PETSC_COMM_SELF,
+             PETSC_ERR_LIB, "boomklu: KLU pivot growth failed (status %d)", lu->common.status);
+  lu->fullGrowth = lu->common.rgrowth;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode factorNumeric(Mat F, Mat A, const MatFactorInfo *)
+{
+  KluFactor *lu = data(F);
+  Rows rows;
+  PetscFunctionBeginUser;
+  F->factorerrortype = MAT_FACTOR_NOERROR;
+  PetscCall(rows.borrow(A));
+  bool done = false;
+  if (lu->refactor && lu->numeric) {
+    // Same pattern (PETSc calls the symbolic phase again otherwise), so the
+    // pivot order of the last factorization applies; kept while the pivots
+    // stay as safe as those partial pivoting chose (rgrowth: the smallest
+    // ratio over the columns of max |A_ij| to max |U_ij|).
+    if (klu_refactor(rows.p(), rows.i(), rows.x(), lu->symbolic, lu->numeric, &lu->common) &&
+        klu_rgrowth(rows.p(), rows.i(), rows.x(), lu->symbolic, lu->numeric, &lu->common) &&
+        lu->common.rgrowth >= lu->growthDrop * lu->fullGrowth) {
+      ++lu->counts.refactors;
+      done = true;
+    } else {
+      ++lu->counts.rejected;
+      PetscCall(PetscInfo(F, "refactorization rejected (pivot growth %g, last full factorization %g): factoring again\n",
+                          lu->common.rgrowth, lu->fullGrowth));
+    }
+  }
+  if (!done) PetscCall(factorFully(F, rows));
+  PetscCall(rows.giveBack());
+  F->ops->solve = matSolve;
+  F->ops->solvetranspose = matSolveTranspose;
+  F->ops->matsolve = matMatSolve;
+  F->assembled = PETSC_TRUE;
+  F->preallocated = PETSC_TRUE;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode factorSymbolic(Mat F, Mat A, IS, IS, const MatFactorInfo *)
+{
+  KluFactor *lu = data(F);
+  Rows rows;
+  PetscFunctionBeginUser;
+  lu->release();
+  PetscCall(rows.borrow(A));
+  lu->symbolic = klu_analyze(rows.n, rows.p(), rows.i(), &lu->common);
+  PetscCall(rows.giveBack());
+  PetscCheck(lu->symbolic, PETSC_COMM_SELF, PETSC_ERR_LIB, "boomklu: KLU analysis failed (status %d)",
+             lu->common.status);
+  F->ops->lufactornumeric = factorNumeric;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode factorView(Mat F, PetscViewer viewer)
+{
+  PetscBool ascii;
+  PetscViewerFormat format;
+  const KluFactor *lu = data(F);
+  PetscFunctionBeginUser;
+  PetscCall(PetscObjectTypeCompare((PetscObject)viewer, PETSCVIEWERASCII, &ascii));
+  if (!ascii) PetscFunctionReturn(0);
+  PetscCall(PetscViewerGetFormat(viewer, &format));
+  if (format != PETSC_VIEWER_ASCII_INFO && format != PETSC_VIEWER_ASCII_INFO_DETAIL) PetscFunctionReturn(0);
+  PetscCall(PetscViewerASCIIPrintf(viewer, "boomklu (SuiteSparse KLU with refactorization):\n"));
+  PetscCall(PetscViewerASCIIPrintf(viewer, "  refactor %s, growth drop %g\n", lu->refactor ? "on" : "off",
+                                   (double)lu->growthDrop));
+  PetscCall(PetscViewerASCIIPrintf(viewer, "  factorizations: %d full, %d refactorizations, %d rejected\n",
+                                   lu->counts.full, lu->counts.refactors, lu->counts.rejected));
+  if (lu->numeric)
+    PetscCall(PetscViewerASCIIPrintf(viewer, "  nonzeros in L %d, in U %d, off-diagonal blocks %d\n", lu->numeric->lnz,
+                                     lu->numeric->unz, lu->numeric->nzoff));
+  PetscFunctionReturn(0);
+}
+
+// What PCSetUp_LU logs about the factor (fill).
+PetscErrorCode factorInfo(Mat F, MatInfoType, MatInfo *info)
+{
+  const KluFactor *lu = data(F);
+  PetscFunctionBeginUser;
+  PetscCall(PetscMemzero(info, sizeof(*info)));
+  info->block_size = 1.0;
+  if (lu->numeric) info->nz_used = info->nz_allocated = (PetscLogDouble)(lu->numeric->lnz + lu->numeric->unz);
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode factorDestroy(Mat F)
+{
+  PetscFunctionBeginUser;
+  KluFactor *lu = data(F);
+  if (lu) lu->release();
+  delete lu;
+  F->data = nullptr;
+  PetscCall(PetscObjectComposeFunction((PetscObject)F, "MatFactorGetSolverType_C", nullptr));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode factorSolverType(Mat, MatSolverType *type)
+{
+  PetscFunctionBeginUser;
+  *type = MATSOLVERBOOMKLU;
+  PetscFunctionReturn(0);
+}
+
+// MatGetFactor() for "boomklu": an empty factor matrix of A's size.
+PetscErrorCode getFactor(Mat A, MatFactorType type, Mat *F)
+{
+  Mat B;
+  PetscInt m, n;
+  PetscFunctionBeginUser;
+  PetscCheck(type == MAT_FACTOR_LU, PetscObjectComm((PetscObject)A), PETSC_ERR_SUP, "boomklu does LU only");
+  PetscCall(MatGetSize(A, &m, &n));
+  PetscCall(MatCreate(PetscObjectComm((PetscObject)A), &B));
+  PetscCall(MatSetSizes(B, PETSC_DECIDE, PETSC_DECIDE, m, n));
+  PetscCall(PetscStrallocpy(MATSOLVERBOOMKLU, &((PetscObject)B)->type_name));
+  PetscCall(MatSetUp(B));
+  auto *lu = new KluFactor;
+  klu_defaults(&lu->common);
+  lu->common.scale = 0; // no row scaling: PETSc's interface does not scale either
+  B->data = lu;
+  B->ops->lufactorsymbolic = factorSymbolic;
+  B->ops->destroy = factorDestroy;
+  B->ops->view = factorView;
+  B->ops->getinfo = factorInfo;
+  PetscCall(PetscObjectComposeFunction((PetscObject)B, "MatFactorGetSolverType_C", factorSolverType));
+  B->factortype = MAT_FACTOR_LU;
+  B->assembled = PETSC_TRUE; // MatView (-ksp_view) asks
+  B->preallocated = PETSC_TRUE;
+  B->canuseordering = PETSC_FALSE; // KLU orders (BTF, AMD) by itself
+  PetscCall(PetscFree(B->solvertype));
+  PetscCall(PetscStrallocpy(MATSOLVERBOOMKLU, &B->solvertype));
+  PetscCall(PetscStrallocpy(MATORDERINGEXTERNAL, (char **)&B->preferredordering[MAT_FACTOR_LU]));
+  // Refactorization carries the pivot order of an earlier matrix, history
+  // that a checkpoint does not hold, just as the reused Jacobian of modified
+  // Newton: a restarted run agrees to the Newton tolerance, not bitwise. So
+  // its default follows -boom_jacobian_reuse, and with that off (the
+  // bitwise-restart mode, docs/checkpoints) every factorization pivots.
+  PetscBool reuse = PETSC_TRUE, set;
+  PetscCall(PetscOptionsGetBool(nullptr, nullptr, "-boom_jacobian_reuse", &reuse, &set));
+  lu->refactor = reuse;
+  PetscOptionsBegin(PetscObjectComm((PetscObject)A), ((PetscObject)A)->prefix, "boomklu options", "Mat");
+  PetscCall(PetscOptionsBool("-mat_boomklu_refactor", "Reuse the last pivot order (klu_refactor) while the pattern holds",
+                             "docs/performance.md", lu->refactor, &lu->refactor, nullptr));
+  PetscCall(PetscOptionsReal("-mat_boomklu_growth_drop",
+                             "Factor again with pivoting when a refactorization's reciprocal pivot growth falls below "
+                             "this times the last full factorization's",
+                             "docs/performance.md", lu->growthDrop, &lu->growthDrop, nullptr));
+  PetscOptionsEnd();
+  PetscCheck(lu->growthDrop >= 0 && lu->growthDrop <= 1, PetscObjectComm((PetscObject)A), PETSC_ERR_USER_INPUT,
+             "-mat_boomklu_growth_drop must be in [0, 1], got %g", (double)lu->growthDrop);
+  *F = B;
+  PetscFunctionReturn(0);
+}
+
+bool registered = false;
+
+PetscErrorCode forgetRegistration()
+{
+  registered = false; // PetscFinalize() empties the registry
+  return 0;
+}
+
+bool isKluFactor(Mat F)
+{
+  return F && F->factortype == MAT_FACTOR_LU && F->ops->destroy == factorDestroy && F->data;
+}
+
+} // namespace
+
+PetscErrorCode registerKluSolver()
+{
+  PetscFunctionBeginUser;
+  if (registered) PetscFunctionReturn(0);
+  PetscCall(MatSolverTypeRegister(MATSOLVERBOOMKLU, MATSEQAIJ, MAT_FACTOR_LU, getFactor));
+  PetscCall(PetscRegisterFinalize(forgetRegistration));
+  registered = true;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode kluSolveColumns(Mat factor, PetscInt columns, PetscInt ld, double *x, PetscBool *done)
+{
+  PetscFunctionBeginUser;
+  *done = PETSC_FALSE;
+  if (!isKluFactor(factor) || !data(factor)->numeric || factor->factorerrortype) PetscFunctionReturn(0);
+  if (columns > 0) PetscCall(solveInPlace(factor, columns, ld, x, false));
+  PetscCall(PetscLogFlops(2.0 * columns * (data(factor)->numeric->lnz + data(factor)->numeric->unz)));
+  *done = PETSC_TRUE;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode kluFactorCounts(Mat factor, KluFactorCounts *counts, PetscBool *isKlu)
+{
+  PetscFunctionBeginUser;
+  *isKlu = isKluFactor(factor) ? PETSC_TRUE : PETSC_FALSE;
+  *counts = *isKlu ? data(factor)->counts : KluFactorCounts{};
+  PetscFunctionReturn(0);
+}
+
+} // namespace boomdyn
