@@ -32,11 +32,16 @@ void ConstraintItem::evaluate(const AssemblyContext &ctx, const ItemValues &in, 
   const int nc = static_cast<int>(ev.Cq.cols()), n = nc + m;
   const double sigma = ctx.sigma;
   Eigen::Map<Eigen::VectorXd> r(residual, n);
-  r.head(nc) += sigma * ev.Cq.transpose() * lam;
+  Eigen::VectorXd &p = product_;
+  p.noalias() = ev.Cq.transpose() * lam;
+  r.head(nc) += sigma * p;
   if (ctx.accelerationLevel) {
     const Eigen::Map<const Eigen::VectorXd> a(in.a, nc);
-    if (!ctx.velocityLevel) r.tail(m) += sigma * (ev.Cq * a + ev.gamma);
-    else { // velocity jump a: C_q (v + a) + C_t = 0
+    if (!ctx.velocityLevel) {
+      p.noalias() = ev.Cq * a;
+      p += ev.gamma;
+      r.tail(m) += sigma * p;
+    } else { // velocity jump a: C_q (v + a) + C_t = 0
       r.tail(m) += sigma * ev.Cq * (a + Eigen::Map<const Eigen::VectorXd>(in.v, nc));
       if (ev.Ct.size() == m) r.tail(m) += sigma * ev.Ct;
     }
