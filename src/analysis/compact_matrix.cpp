@@ -24,7 +24,13 @@ PetscErrorCode CompactMatrix::update(Mat src)
   PetscCall(MatSeqAIJGetArrayRead(src, &a));
   const PetscInt entries = ia[rows];
   bool same = copy_ && src == source_ && state == sourceState_ && (PetscInt)kept_.size() == entries;
-  for (PetscInt k = 0; same && k < entries; ++k) same = (a[k] != 0.0) == (kept_[k] != 0);
+  if (same) {
+    // Every entry compared, without an early exit: a branch-free loop the
+    // compiler vectorizes (the zero pattern holds in three updates of four).
+    char changed = 0;
+    for (PetscInt k = 0; k < entries; ++k) changed |= (char)((a[k] != 0.0) != (kept_[k] != 0));
+    same = !changed;
+  }
   if (same) {
     // The same positions: the values only, through the copy's array (its
     // state changes, so nothing keeps a stale product).
