@@ -58,6 +58,15 @@ double strainEnergy(const Section &sec, double l, const Vec8 &e);
 // Internal force f = dU/de and, if K != nullptr, tangent K = d^2U/de^2.
 void internalForce(const Section &sec, double l, const Vec8 &e, Vec8 &f, Mat8 *K);
 
+// internalForce(sec, l, e_j, f_j, nullptr) for kForceBatch elements of one
+// length and section at once, bit for bit (each element in one lane of a
+// SIMD vector: the same IEEE operations in the same order). The residual of
+// a long beam evaluates its elements in such batches (BeamElementItem).
+// f_j may alias e_j.
+constexpr int kForceBatch = 4;
+using ForceLanes = double __attribute__((vector_size(kForceBatch * sizeof(double))));
+void internalForceBatch(const Section &sec, double l, const double *const e[kForceBatch], double *const f[kForceBatch]);
+
 // Kelvin-Voigt damping force (docs/model.md §1.1, "Material damping")
 //   fd = ∫ [EA etaA epsdot deps/de + EI etaB Kdot dK/de] dx,  epsdot = deps/de . edot,
 // added to f like the internal force. Returns the dissipated power

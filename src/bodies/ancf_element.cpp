@@ -363,14 +363,19 @@ namespace {
 // come from the shape table, and r', r'' stay in registers as x and y parts
 // instead of 2-vectors (the Eigen path spent more instructions on moves and
 // shuffles than on its ~400 flops; callgrind, docs/performance.md).
-void internalForceOnly(const Section &sec, double l, const QuadRule &g, const ShapeTable &shapes, const double *e,
-                       double *f)
+// T is double (one element) or ForceLanes (kForceBatch elements of one
+// beam, one per lane): every operation is lane-wise IEEE arithmetic in the
+// same order as the scalar one (no FMA in this build, no reassociation), so
+// each lane is bit for bit the scalar element (test
+// AncfElement.BatchedForceIsBitIdentical). e and f hold 8 values of T.
+template <typename T>
+void internalForceOnly(const Section &sec, double l, const QuadRule &g, const ShapeTable &shapes, const T *e, T *f)
 {
   constexpr int kMax = kGaussPoints + kReducedAxialPoints;
-  double r1x[kMax], r1y[kMax], r2x[kMax], r2y[kMax];
+  T r1x[kMax], r1y[kMax], r2x[kMax], r2y[kMax];
   for (int p = 0; p < g.size; ++p) {
     const double *s1 = shapes.s1[p].data(), *s2 = shapes.s2[p].data();
-    double ax = 0, ay = 0, bx = 0, by = 0;
+    T ax{}, ay{}, bx{}, by{};
     for (int k = 0; k < 4; ++k) {
       ax += s1[k] * e[2 * k];
       ay += s1[k] * e[2 * k + 1];
@@ -382,31 +387,33 @@ void internalForceOnly(const Section &sec, double l, const QuadRule &g, const Sh
   // projectAxialStrain(.., gradients = false) with the slopes above.
   const double gamma = assumedPointwiseWeight(sec, l);
   const bool projected = sec.axialIntegration == AxialIntegration::Assumed && gamma < 1.0;
-  double alpha0 = 0, alpha1 = 0;
+  T alpha0{}, alpha1{};
   if (projected)
     for (int p = 0; p < kGaussPoints; ++p) {
-      const double eps = 0.5 * ((r1x[p] * r1x[p] + r1y[p] * r1y[p]) - 1.0);
+      const T eps = 0.5 * ((r1x[p] * r1x[p] + r1y[p] * r1y[p]) - 1.0);
       alpha0 += shapes.projectionWeight[0][p] * eps;
       alpha1 += shapes.projectionWeight[1][p] * eps;
     }
   const double EAproj = (1.0 - gamma) * sec.EA;
-  double fl[8] = {0, 0, 0, 0, 0, 0, 0, 0};
+  T fl[8] = {};
   for (int p = 0; p < g.size; ++p) {
     const QuadPoint &q = g.points[p];
     const double EA = q.axial * gamma * sec.EA, EI = q.bending * sec.EI;
     const double *s1 = shapes.s1[p].data(), *s2 = shapes.s2[p].data();
     const double wx = q.w * l;
-    const double J2 = r1x[p] * r1x[p] + r1y[p] * r1y[p], iJ2 = 1.0 / J2;
-    const double eps = 0.5 * (J2 - 1.0);
-    const double K = (r1x[p] * r2y[p] - r1y[p] * r2x[p]) * iJ2;
+    const T J2 = r1x[p] * r1x[p] + r1y[p] * r1y[p], iJ2 = 1.0 / J2;
+    const T eps = 0.5 * (J2 - 1.0);
+    const T K = (r1x[p] * r2y[p] - r1y[p] * r2x[p]) * iJ2;
     // proj.strain(q.xi): alpha_0 phi_0 + alpha_1 phi_1, summed from zero.
-    double strain = 0;
+    T strain{};
     strain += alpha0 * 1.0;
     strain += alpha1 * shapes.legendre1[p];
-    const double N = EA * eps + (projected ? EAproj * strain : 0.0);
-    const double a = N - 2.0 * EI * K * K * iJ2, b = EI * K * iJ2;
-    const double v1x = wx * (a * r1x[p] + b * r2y[p]), v1y = wx * (a * r1y[p] + b * -r2x[p]);
-    const double wb = wx * b, v2x = wb * r1y[p], v2y = wb * -r1x[p];
+    T axial{}; // EAproj * strain, or +0 without the projection
+    if (projected) axial = EAproj * strain;
+    const T N = EA * eps + axial;
+    const T a = N - 2.0 * EI * K * K * iJ2, b = EI * K * iJ2;
+    const T v1x = wx * (a * r1x[p] + b * r2y[p]), v1y = wx * (a * r1y[p] + b * -r2x[p]);
+    const T wb = wx * b, v2x = wb * r1y[p], v2y = wb * -r1x[p];
     for (int k = 0; k < 4; ++k) {
       fl[2 * k] += s1[k] * v1x - s2[k] * v2x;
       fl[2 * k + 1] += s1[k] * v1y - s2[k] * v2y;
@@ -435,7 +442,7 @@ void internalForce(const Section &sec, double l, const Vec8 &e, Vec8 &f, Mat8 *K
 {
   const QuadRule &g = quadRule(sec.axialIntegration);
   if (!Kt) {
-    internalForceOnly(sec, l, g, shapeTable(g, l), e.data(), f.data());
+    internalForceOnly<double>(sec, l, g, shapeTable(g, l), e.data(), f.data());
     return;
   }
   const ShapeTable &shapes = shapeTable(g, l);
@@ -488,6 +495,19 @@ void internalForce(const Section &sec, double l, const Vec8 &e, Vec8 &f, Mat8 *K
   if (!Kt) return;
   addKronecker(P, Q, *Kt);
   for (int j = 0; j < proj.n; ++j) Kt->noalias() += (EAproj * l) * proj.grad[j] * proj.grad[j].transpose();
+}
+
+void internalForceBatch(const Section &sec, double l, const double *const e[kForceBatch], double *const f[kForceBatch])
+{
+  // Lanes in, one element per lane (the transpose of kForceBatch element
+  // vectors), the scalar kernel's operations on the lanes, lanes out.
+  const QuadRule &g = quadRule(sec.axialIntegration);
+  ForceLanes el[8], fl[8];
+  for (int i = 0; i < 8; ++i)
+    for (int j = 0; j < kForceBatch; ++j) el[i][j] = e[j][i];
+  internalForceOnly<ForceLanes>(sec, l, g, shapeTable(g, l), el, fl);
+  for (int j = 0; j < kForceBatch; ++j)
+    for (int i = 0; i < 8; ++i) f[j][i] = fl[i][j];
 }
 
 namespace {

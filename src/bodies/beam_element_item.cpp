@@ -116,6 +116,31 @@ void BeamElementItem::evaluate(const AssemblyContext &ctx, const ItemValues &in,
   if (sec.damped()) addDamping(ctx, in, residual, J);
 }
 
+const void *BeamElementItem::residualBatchKey() const
+{
+  return beam_->section().damped() ? nullptr : static_cast<const void *>(beam_);
+}
+
+void BeamElementItem::evaluateResiduals(const AssemblyContext &ctx, const WorkItem *const items[],
+                                        const ItemValues in[], double *const residual[], int count) const
+{
+  static_assert(ancf::kForceBatch == kResidualBatch, "one kernel call per batch of residuals");
+  if (count != ancf::kForceBatch || beam_->section().damped()) {
+    WorkItem::evaluateResiduals(ctx, items, in, residual, count);
+    return;
+  }
+  // The undamped residual path of evaluate() (internalForce without a
+  // tangent, then inertiaAndForces), with the force of the kForceBatch
+  // elements from one call; the items share this item's beam (same key).
+  ancf::Vec8 f[ancf::kForceBatch];
+  const double *e[ancf::kForceBatch];
+  double *fp[ancf::kForceBatch];
+  for (int j = 0; j < count; ++j) e[j] = in[j].q, fp[j] = f[j].data();
+  ancf::internalForceBatch(beam_->section(), beam_->elementLength(), e, fp);
+  for (int j = 0; j < count; ++j)
+    static_cast<const BeamElementItem *>(items[j])->inertiaAndForces(in[j].a, f[j], ctx.loadFactor, residual[j]);
+}
+
 void BeamElementItem::evaluatePencil(const PencilPass (&pass)[kPencilPasses], int n, double *scratch) const
 {
   const PencilPass &A = pass[0], &B = pass[1], &D = pass[2];
