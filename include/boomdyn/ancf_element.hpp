@@ -66,6 +66,8 @@ void internalForce(const Section &sec, double l, const Vec8 &e, Vec8 &f, Mat8 *K
 constexpr int kForceBatch = 4;
 using ForceLanes = double __attribute__((vector_size(kForceBatch * sizeof(double))));
 void internalForceBatch(const Section &sec, double l, const double *const e[kForceBatch], double *const f[kForceBatch]);
+// The same on lanes: e[i] holds entry i of every element (lane j: element j).
+void internalForceLanes(const Section &sec, double l, const ForceLanes e[8], ForceLanes f[8]);
 
 // Kelvin-Voigt damping force (docs/model.md §1.1, "Material damping")
 //   fd = ∫ [EA etaA epsdot deps/de + EI etaB Kdot dK/de] dx,  epsdot = deps/de . edot,

@@ -91,6 +91,8 @@ private:
   PetscErrorCode beginLocal(const AssemblyContext &ctx, Vec x);
   PetscErrorCode endLocal();
   void gather(std::size_t k, ItemValues &vals, int slot = 0);
+  // Item k's residual block r into the local residual f (cleared after).
+  void addResidual(std::size_t k, double *r, double *f) const;
   void startDampingForces(DampingForces *forces) const;
   void addDampingForce(std::size_t k, const ItemValues &vals, DampingForces *forces) const;
   void takeDampingForce(std::size_t k, DampingForces *forces) const;

@@ -497,15 +497,20 @@ void internalForce(const Section &sec, double l, const Vec8 &e, Vec8 &f, Mat8 *K
   for (int j = 0; j < proj.n; ++j) Kt->noalias() += (EAproj * l) * proj.grad[j] * proj.grad[j].transpose();
 }
 
+void internalForceLanes(const Section &sec, double l, const ForceLanes e[8], ForceLanes f[8])
+{
+  const QuadRule &g = quadRule(sec.axialIntegration);
+  internalForceOnly<ForceLanes>(sec, l, g, shapeTable(g, l), e, f);
+}
+
 void internalForceBatch(const Section &sec, double l, const double *const e[kForceBatch], double *const f[kForceBatch])
 {
   // Lanes in, one element per lane (the transpose of kForceBatch element
   // vectors), the scalar kernel's operations on the lanes, lanes out.
-  const QuadRule &g = quadRule(sec.axialIntegration);
   ForceLanes el[8], fl[8];
   for (int i = 0; i < 8; ++i)
     for (int j = 0; j < kForceBatch; ++j) el[i][j] = e[j][i];
-  internalForceOnly<ForceLanes>(sec, l, g, shapeTable(g, l), el, fl);
+  internalForceLanes(sec, l, el, fl);
   for (int j = 0; j < kForceBatch; ++j)
     for (int i = 0; i < 8; ++i) f[j][i] = fl[i][j];
 }

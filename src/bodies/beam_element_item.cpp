@@ -130,15 +130,38 @@ void BeamElementItem::evaluateResiduals(const AssemblyContext &ctx, const WorkIt
     return;
   }
   // The undamped residual path of evaluate() (internalForce without a
-  // tangent, then inertiaAndForces), with the force of the kForceBatch
-  // elements from one call; the items share this item's beam (same key).
-  ancf::Vec8 f[ancf::kForceBatch];
-  const double *e[ancf::kForceBatch];
-  double *fp[ancf::kForceBatch];
-  for (int j = 0; j < count; ++j) e[j] = in[j].q, fp[j] = f[j].data();
-  ancf::internalForceBatch(beam_->section(), beam_->elementLength(), e, fp);
-  for (int j = 0; j < count; ++j)
-    static_cast<const BeamElementItem *>(items[j])->inertiaAndForces(in[j].a, f[j], ctx.loadFactor, residual[j]);
+  // tangent, then inertiaAndForces) on lanes, one element per lane; the
+  // items share this item's beam (same key), so its length and section.
+  using Lanes = ancf::ForceLanes;
+  const BeamElementItem *const *beams = reinterpret_cast<const BeamElementItem *const *>(items);
+  Lanes q[8], f[8];
+  for (int i = 0; i < 8; ++i)
+    for (int j = 0; j < count; ++j) q[i][j] = in[j].q[i];
+  ancf::internalForceLanes(beam_->section(), beam_->elementLength(), q, f);
+  bool sameMass = kroneckerMass_;
+  for (int j = 1; j < count; ++j) sameMass = sameMass && beams[j]->mass_ == mass_;
+  if (!sameMass) {
+    for (int j = 0; j < count; ++j) {
+      ancf::Vec8 fj;
+      for (int i = 0; i < 8; ++i) fj[i] = f[i][j];
+      beams[j]->inertiaAndForces(in[j].a, fj, ctx.loadFactor, residual[j]);
+    }
+    return;
+  }
+  // inertiaAndForces' Kronecker path lane by lane: per entry 2i+d the
+  // products m_ik a_(2k+d) summed from zero in k's order, then
+  // (s + f) - loadFactor g, each item with its own gravity force.
+  const ancf::Mat8 &M = *mass_;
+  Lanes a[8], g[8];
+  for (int i = 0; i < 8; ++i)
+    for (int j = 0; j < count; ++j) a[i][j] = in[j].a[i], g[i][j] = beams[j]->gravity_[i];
+  for (int i = 0; i < 4; ++i)
+    for (int d = 0; d < 2; ++d) {
+      Lanes s{};
+      for (int k = 0; k < 4; ++k) s += M(2 * i, 2 * k) * a[2 * k + d];
+      const Lanes r = (s + f[2 * i + d]) - ctx.loadFactor * g[2 * i + d];
+      for (int j = 0; j < count; ++j) residual[j][2 * i + d] = r[j];
+    }
 }
 
 void BeamElementItem::evaluatePencil(const PencilPass (&pass)[kPencilPasses], int n, double *scratch) const

@@ -9,6 +9,42 @@
 
 namespace boomdyn {
 
+namespace {
+
+// Four doubles in one vector (GCC's vector extension: lane-wise IEEE
+// arithmetic, an AVX register in this build), loaded and stored unaligned.
+using Lanes = double __attribute__((vector_size(4 * sizeof(double))));
+inline Lanes load(const double *p)
+{
+  Lanes v;
+  std::memcpy(&v, p, sizeof v);
+  return v;
+}
+inline void store(double *p, const Lanes &v) { std::memcpy(p, &v, sizeof v); }
+
+} // namespace
+
+void Assembler::addResidual(std::size_t k, double *r, double *f) const
+{
+  // f[local] += r entry by entry, and r cleared for the next item (see
+  // evaluate()); an item on consecutive entries four at a time (the same
+  // sums: each entry of f receives its items' values in the items' order).
+  const int begin = itemStart_[k], n = itemStart_[k + 1] - begin;
+  const PetscInt *local = itemLocal_.data() + begin;
+  int i = 0;
+  if (plain_[k]) {
+    double *fk = f + local[0];
+    for (; i + 4 <= n; i += 4) {
+      store(fk + i, load(fk + i) + load(r + i));
+      store(r + i, Lanes{});
+    }
+  }
+  for (; i < n; ++i) {
+    f[local[i]] += r[i];
+    r[i] = 0.0;
+  }
+}
+
 PetscErrorCode Assembler::setUp(MPI_Comm comm)
 {
   PetscFunctionBeginUser;
@@ -241,9 +277,6 @@ void Assembler::gather(std::size_t k, ItemValues &vals, int slot)
     // Four entries at a time in explicit vectors (GCC did not vectorize the
     // loop: the buffers might alias the sources); lane-wise the same
     // multiply and add.
-    using Lanes = double __attribute__((vector_size(4 * sizeof(double))));
-    const auto load = [](const double *p) { Lanes v; std::memcpy(&v, p, sizeof v); return v; };
-    const auto store = [](double *p, const Lanes &v) { std::memcpy(p, &v, sizeof v); };
     int i = 0;
     for (; i + 4 <= n; i += 4) {
       const Lanes xi = load(x + i);
@@ -307,14 +340,7 @@ PetscErrorCode Assembler::evaluate(const AssemblyContext &context, Vec x, Vec F,
       double *res[kResidualBatch];
       for (int j = 0; j < m; ++j) gather(k + j, in[j], j), res[j] = br + j * slot_;
       items_[k]->evaluateResiduals(ctx, items_.data() + k, in, res, m);
-      for (int j = 0; j < m; ++j) {
-        const int b = itemStart_[k + j], nj = itemStart_[k + j + 1] - b;
-        const PetscInt *local = itemLocal_.data() + b;
-        for (int i = 0; i < nj; ++i) {
-          fl[local[i]] += res[j][i];
-          res[j][i] = 0.0;
-        }
-      }
+      for (int j = 0; j < m; ++j) addResidual(k + j, res[j], fl);
       k += m - 1;
       continue;
     }
@@ -324,13 +350,7 @@ PetscErrorCode Assembler::evaluate(const AssemblyContext &context, Vec x, Vec F,
     double *Jk = J ? cooV_.data() + cooStart_[k] : nullptr;
     if (Jk) std::fill(Jk, Jk + n * n, 0.0);
     items_[k]->evaluate(ctx, vals, br, Jk);
-    if (fl) {
-      const PetscInt *local = itemLocal_.data() + begin;
-      for (int i = 0; i < n; ++i) {
-        fl[local[i]] += br[i];
-        br[i] = 0.0;
-      }
-    }
+    if (fl) addResidual(k, br, fl);
   }
   PetscCall(endLocal());
   if (F) {
