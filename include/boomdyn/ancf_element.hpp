@@ -8,6 +8,8 @@
 // of the paper is Q_k = -f.
 #pragma once
 
+#include "boomdyn/lanes.hpp"
+
 #include <Eigen/Dense>
 
 namespace boomdyn::ancf {
@@ -64,7 +66,8 @@ void internalForce(const Section &sec, double l, const Vec8 &e, Vec8 &f, Mat8 *K
 // a long beam evaluates its elements in such batches (BeamElementItem).
 // f_j may alias e_j.
 constexpr int kForceBatch = 4;
-using ForceLanes = double __attribute__((vector_size(kForceBatch * sizeof(double))));
+using ForceLanes = lanes::Lanes4;
+static_assert(kForceBatch == lanes::kWidth, "one element per lane");
 void internalForceBatch(const Section &sec, double l, const double *const e[kForceBatch], double *const f[kForceBatch]);
 // The same on lanes: e[i] holds entry i of every element (lane j: element j).
 void internalForceLanes(const Section &sec, double l, const ForceLanes e[8], ForceLanes f[8]);

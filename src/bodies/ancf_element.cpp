@@ -508,11 +508,9 @@ void internalForceBatch(const Section &sec, double l, const double *const e[kFor
   // Lanes in, one element per lane (the transpose of kForceBatch element
   // vectors), the scalar kernel's operations on the lanes, lanes out.
   ForceLanes el[8], fl[8];
-  for (int i = 0; i < 8; ++i)
-    for (int j = 0; j < kForceBatch; ++j) el[i][j] = e[j][i];
+  lanes::gatherLanes(e, 0, el), lanes::gatherLanes(e, 4, el + 4);
   internalForceLanes(sec, l, el, fl);
-  for (int j = 0; j < kForceBatch; ++j)
-    for (int i = 0; i < 8; ++i) f[j][i] = fl[i][j];
+  lanes::scatterLanes(fl, f, 0), lanes::scatterLanes(fl + 4, f, 4);
 }
 
 namespace {

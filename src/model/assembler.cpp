@@ -1,26 +1,19 @@
 #include "boomdyn/assembler.hpp"
 
+#include "boomdyn/lanes.hpp"
 #include "boomdyn/log_events.hpp"
 #include "boomdyn/partition.hpp"
 
 #include <algorithm>
-#include <cstring>
 #include <unordered_map>
 
 namespace boomdyn {
 
 namespace {
 
-// Four doubles in one vector (GCC's vector extension: lane-wise IEEE
-// arithmetic, an AVX register in this build), loaded and stored unaligned.
-using Lanes = double __attribute__((vector_size(4 * sizeof(double))));
-inline Lanes load(const double *p)
-{
-  Lanes v;
-  std::memcpy(&v, p, sizeof v);
-  return v;
-}
-inline void store(double *p, const Lanes &v) { std::memcpy(p, &v, sizeof v); }
+using lanes::Lanes4;
+using lanes::load;
+using lanes::store;
 
 } // namespace
 
@@ -36,7 +29,7 @@ void Assembler::addResidual(std::size_t k, double *r, double *f) const
     double *fk = f + local[0];
     for (; i + 4 <= n; i += 4) {
       store(fk + i, load(fk + i) + load(r + i));
-      store(r + i, Lanes{});
+      store(r + i, Lanes4{});
     }
   }
   for (; i < n; ++i) {
@@ -279,7 +272,7 @@ void Assembler::gather(std::size_t k, ItemValues &vals, int slot)
     // multiply and add.
     int i = 0;
     for (; i + 4 <= n; i += 4) {
-      const Lanes xi = load(x + i);
+      const Lanes4 xi = load(x + i);
       store(bq + i, load(qc + i) + cQ * xi);
       store(bv + i, load(vc + i) + cV * xi);
       store(ba + i, load(ac + i) + cA * xi);
