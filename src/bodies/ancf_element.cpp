@@ -368,12 +368,13 @@ namespace {
 // same order as the scalar one (no FMA in this build, no reassociation), so
 // each lane is bit for bit the scalar element (test
 // AncfElement.BatchedForceIsBitIdentical). e and f hold 8 values of T.
-template <typename T>
-void internalForceOnly(const Section &sec, double l, const QuadRule &g, const ShapeTable &shapes, const T *e, T *f)
+// NP: the rule's size (g.size) as a constant, so that the loops over the
+// points unroll (the two rules: 5 points, 8 with reduced axial points).
+template <typename T, int NP>
+void internalForceOnlyN(const Section &sec, double l, const QuadRule &g, const ShapeTable &shapes, const T *e, T *f)
 {
-  constexpr int kMax = kGaussPoints + kReducedAxialPoints;
-  T r1x[kMax], r1y[kMax], r2x[kMax], r2y[kMax];
-  for (int p = 0; p < g.size; ++p) {
+  T r1x[NP], r1y[NP], r2x[NP], r2y[NP];
+  for (int p = 0; p < NP; ++p) {
     const double *s1 = shapes.s1[p].data(), *s2 = shapes.s2[p].data();
     T ax{}, ay{}, bx{}, by{};
     for (int k = 0; k < 4; ++k) {
@@ -396,7 +397,7 @@ void internalForceOnly(const Section &sec, double l, const QuadRule &g, const Sh
     }
   const double EAproj = (1.0 - gamma) * sec.EA;
   T fl[8] = {};
-  for (int p = 0; p < g.size; ++p) {
+  for (int p = 0; p < NP; ++p) {
     const QuadPoint &q = g.points[p];
     const double EA = q.axial * gamma * sec.EA, EI = q.bending * sec.EI;
     const double *s1 = shapes.s1[p].data(), *s2 = shapes.s2[p].data();
@@ -420,6 +421,14 @@ void internalForceOnly(const Section &sec, double l, const QuadRule &g, const Sh
     }
   }
   for (int i = 0; i < 8; ++i) f[i] = fl[i];
+}
+
+template <typename T>
+void internalForceOnly(const Section &sec, double l, const QuadRule &g, const ShapeTable &shapes, const T *e, T *f)
+{
+  static_assert(kGaussPoints == 5 && kGaussPoints + kReducedAxialPoints == 8, "the two rules' sizes");
+  if (g.size == kGaussPoints) internalForceOnlyN<T, kGaussPoints>(sec, l, g, shapes, e, f);
+  else internalForceOnlyN<T, kGaussPoints + kReducedAxialPoints>(sec, l, g, shapes, e, f);
 }
 
 // r' and r'' at every point of the rule g, for the kernels with a tangent

@@ -17,7 +17,7 @@ using lanes::store;
 
 } // namespace
 
-void Assembler::addResidual(std::size_t k, double *r, double *f) const
+inline void Assembler::addResidual(std::size_t k, double *r, double *f) const
 {
   // f[local] += r entry by entry, and r cleared for the next item (see
   // evaluate()); an item on consecutive entries four at a time (the same
@@ -248,7 +248,7 @@ PetscErrorCode Assembler::endLocal()
   PetscFunctionReturn(0);
 }
 
-void Assembler::gather(std::size_t k, ItemValues &vals, int slot)
+inline void Assembler::gather(std::size_t k, ItemValues &vals, int slot)
 {
   // The affine map q = qc + cQ x, v = vc + cV x (cZ for first-order
   // states), a = ac + cA x, entry by entry for this item's unknowns only
