@@ -88,7 +88,23 @@ struct ShapeTable {
   // of the assumed strain's projection (legendre01 below; the same products).
   double legendre1[kGaussPoints + kReducedAxialPoints];
   double projectionWeight[kAssumedTerms][kGaussPoints];
+  // s1, s2 in every lane (the batched kernel's operands: a product with a
+  // lane vector of one value is the product with the value, bit for bit).
+  lanes::Lanes4 s1Lanes[kGaussPoints + kReducedAxialPoints][4], s2Lanes[kGaussPoints + kReducedAxialPoints][4];
 };
+
+// The shape values at point p as the kernel's operand type: doubles, or lanes.
+inline const double *shapeOperands(const Eigen::Vector4d (&s)[kGaussPoints + kReducedAxialPoints],
+                                   const lanes::Lanes4 (&)[kGaussPoints + kReducedAxialPoints][4], int p, double *)
+{
+  return s[p].data();
+}
+inline const lanes::Lanes4 *shapeOperands(const Eigen::Vector4d (&)[kGaussPoints + kReducedAxialPoints],
+                                           const lanes::Lanes4 (&v)[kGaussPoints + kReducedAxialPoints][4], int p,
+                                           lanes::Lanes4 *)
+{
+  return v[p];
+}
 
 
 const ShapeTable &shapeTable(const QuadRule &g, double l)
@@ -106,6 +122,11 @@ const ShapeTable &shapeTable(const QuadRule &g, double l)
     t.s1[p] = shapeValues(g.points[p].xi, l, 1);
     t.s2[p] = shapeValues(g.points[p].xi, l, 2);
     t.legendre1[p] = legendre01(1, g.points[p].xi);
+    for (int k = 0; k < 4; ++k) {
+      const double a = t.s1[p][k], b = t.s2[p][k];
+      t.s1Lanes[p][k] = lanes::Lanes4{a, a, a, a};
+      t.s2Lanes[p][k] = lanes::Lanes4{b, b, b, b};
+    }
   }
   for (int j = 0; j < kAssumedTerms; ++j)
     for (int p = 0; p < kGaussPoints; ++p) t.projectionWeight[j][p] = projectionWeight(j, p);
@@ -375,7 +396,8 @@ void internalForceOnlyN(const Section &sec, double l, const QuadRule &g, const S
 {
   T r1x[NP], r1y[NP], r2x[NP], r2y[NP];
   for (int p = 0; p < NP; ++p) {
-    const double *s1 = shapes.s1[p].data(), *s2 = shapes.s2[p].data();
+    const auto *s1 = shapeOperands(shapes.s1, shapes.s1Lanes, p, static_cast<T *>(nullptr));
+    const auto *s2 = shapeOperands(shapes.s2, shapes.s2Lanes, p, static_cast<T *>(nullptr));
     T ax{}, ay{}, bx{}, by{};
     for (int k = 0; k < 4; ++k) {
       ax += s1[k] * e[2 * k];
@@ -400,7 +422,8 @@ void internalForceOnlyN(const Section &sec, double l, const QuadRule &g, const S
   for (int p = 0; p < NP; ++p) {
     const QuadPoint &q = g.points[p];
     const double EA = q.axial * gamma * sec.EA, EI = q.bending * sec.EI;
-    const double *s1 = shapes.s1[p].data(), *s2 = shapes.s2[p].data();
+    const auto *s1 = shapeOperands(shapes.s1, shapes.s1Lanes, p, static_cast<T *>(nullptr));
+    const auto *s2 = shapeOperands(shapes.s2, shapes.s2Lanes, p, static_cast<T *>(nullptr));
     const double wx = q.w * l;
     const T J2 = r1x[p] * r1x[p] + r1y[p] * r1y[p], iJ2 = 1.0 / J2;
     const T eps = 0.5 * (J2 - 1.0);
