@@ -106,6 +106,8 @@ private:
   std::vector<const WorkItem *> items_;
   std::vector<int> itemStart_, itemCoords_; // offsets into itemLocal_; coordinate counts
   std::vector<PetscInt> itemLocal_;         // local indices of each item's dofs
+  std::vector<char> first_;                // per item entry: the first to touch its local entry
+  std::vector<PetscInt> untouched_;         // local entries no item touches
   std::vector<char> plain_;                // item's local entries consecutive, no first-order state
   std::vector<unsigned char> batch_;       // items in the residual batch starting at each item (1: alone)
   std::size_t slot_ = 0;                    // size of one block of the per-item buffers (the largest item)

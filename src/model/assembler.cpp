@@ -5,6 +5,8 @@
 #include "boomdyn/partition.hpp"
 
 #include <algorithm>
+#include <cstdint>
+#include <cstring>
 #include <unordered_map>
 
 namespace boomdyn {
@@ -20,20 +22,29 @@ using lanes::store;
 inline void Assembler::addResidual(std::size_t k, double *r, double *f) const
 {
   // f[local] += r entry by entry, and r cleared for the next item (see
-  // evaluate()); an item on consecutive entries four at a time (the same
-  // sums: each entry of f receives its items' values in the items' order).
+  // evaluate()). f is not zeroed beforehand: the first item to touch an
+  // entry (first_) stores 0.0 + r, which is bit for bit what adding r to
+  // the zero of a VecSet gives; the others add. An item on consecutive
+  // entries goes four at a time (the same sums: each entry of f receives
+  // its items' values in the items' order).
   const int begin = itemStart_[k], n = itemStart_[k + 1] - begin;
   const PetscInt *local = itemLocal_.data() + begin;
+  const char *first = first_.data() + begin;
   int i = 0;
   if (plain_[k]) {
     double *fk = f + local[0];
     for (; i + 4 <= n; i += 4) {
-      store(fk + i, load(fk + i) + load(r + i));
+      std::uint32_t flags;
+      std::memcpy(&flags, first + i, sizeof flags);
+      if (flags == 0) store(fk + i, load(fk + i) + load(r + i));
+      else if (flags == 0x01010101u) store(fk + i, Lanes4{} + load(r + i));
+      else
+        for (int d = i; d < i + 4; ++d) fk[d] = (first[d] ? 0.0 : fk[d]) + r[d];
       store(r + i, Lanes4{});
     }
   }
   for (; i < n; ++i) {
-    f[local[i]] += r[i];
+    f[local[i]] = (first[i] ? 0.0 : f[local[i]]) + r[i];
     r[i] = 0.0;
   }
 }
@@ -155,6 +166,15 @@ PetscErrorCode Assembler::buildPattern()
   slot_ = maxN;
   const std::size_t blocks = std::max(kPencilPasses, kResidualBatch);
   for (auto *b : {&bq_, &bv_, &ba_, &bl_, &br_}) b->assign(blocks * slot_, 0.0);
+  // The first item entry (in the items' order) that touches each local
+  // entry, and the entries no item touches (addResidual, evaluate()).
+  first_.assign(itemLocal_.size(), 0);
+  std::vector<char> touched(nloc, 0);
+  for (std::size_t i = 0; i < itemLocal_.size(); ++i)
+    if (!touched[itemLocal_[i]]) touched[itemLocal_[i]] = 1, first_[i] = 1;
+  untouched_.clear();
+  for (PetscInt i = 0; i < nloc; ++i)
+    if (!touched[i]) untouched_.push_back(i);
   // Items whose local entries are consecutive and none a first-order state (gather()'s plain path).
   plain_.assign(items_.size(), 0);
   for (std::size_t k = 0; k < items_.size(); ++k) {
@@ -312,8 +332,10 @@ PetscErrorCode Assembler::evaluate(const AssemblyContext &context, Vec x, Vec F,
   Vec fTarget = F ? (inPlace_ ? F : fLocal_.get()) : nullptr;
   PetscScalar *fl = nullptr;
   if (F) {
-    PetscCall(VecSet(fTarget, 0.0));
+    // No VecSet: the items' first contributions store (addResidual); only
+    // entries no item touches are zeroed here.
     PetscCall(VecGetArray(fTarget, &fl));
+    for (PetscInt i : untouched_) fl[i] = 0.0;
   }
   ItemValues vals;
   // Items add into a zeroed residual block. With F wanted, br_ is zeroed
