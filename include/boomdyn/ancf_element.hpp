@@ -8,6 +8,8 @@
 // of the paper is Q_k = -f.
 #pragma once
 
+#include "boomdyn/lanes.hpp"
+
 #include <Eigen/Dense>
 
 namespace boomdyn::ancf {
@@ -57,6 +59,18 @@ Vec8 gravityForce(double rhoA, double l, const Vec2 &g);
 double strainEnergy(const Section &sec, double l, const Vec8 &e);
 // Internal force f = dU/de and, if K != nullptr, tangent K = d^2U/de^2.
 void internalForce(const Section &sec, double l, const Vec8 &e, Vec8 &f, Mat8 *K);
+
+// internalForce(sec, l, e_j, f_j, nullptr) for kForceBatch elements of one
+// length and section at once, bit for bit (each element in one lane of a
+// SIMD vector: the same IEEE operations in the same order). The residual of
+// a long beam evaluates its elements in such batches (BeamElementItem).
+// f_j may alias e_j.
+constexpr int kForceBatch = 4;
+using ForceLanes = lanes::Lanes4;
+static_assert(kForceBatch == lanes::kWidth, "one element per lane");
+void internalForceBatch(const Section &sec, double l, const double *const e[kForceBatch], double *const f[kForceBatch]);
+// The same on lanes: e[i] holds entry i of every element (lane j: element j).
+void internalForceLanes(const Section &sec, double l, const ForceLanes e[8], ForceLanes f[8]);
 
 // Kelvin-Voigt damping force (docs/model.md §1.1, "Material damping")
 //   fd = ∫ [EA etaA epsdot deps/de + EI etaB Kdot dK/de] dx,  epsdot = deps/de . edot,

@@ -90,7 +90,9 @@ private:
   // items' gathers, with the coefficients of the map; endLocal() releases them.
   PetscErrorCode beginLocal(const AssemblyContext &ctx, Vec x);
   PetscErrorCode endLocal();
-  void gather(std::size_t k, ItemValues &vals);
+  void gather(std::size_t k, ItemValues &vals, int slot = 0);
+  // Item k's residual block r into the local residual f (cleared after).
+  void addResidual(std::size_t k, double *r, double *f) const;
   void startDampingForces(DampingForces *forces) const;
   void addDampingForce(std::size_t k, const ItemValues &vals, DampingForces *forces) const;
   void takeDampingForce(std::size_t k, DampingForces *forces) const;
@@ -104,6 +106,11 @@ private:
   std::vector<const WorkItem *> items_;
   std::vector<int> itemStart_, itemCoords_; // offsets into itemLocal_; coordinate counts
   std::vector<PetscInt> itemLocal_;         // local indices of each item's dofs
+  std::vector<char> first_;                // per item entry: the first to touch its local entry
+  std::vector<PetscInt> untouched_;         // local entries no item touches
+  std::vector<char> plain_;                // item's local entries consecutive, no first-order state
+  std::vector<unsigned char> batch_;       // items in the residual batch starting at each item (1: alone)
+  std::size_t slot_ = 0;                    // size of one block of the per-item buffers (the largest item)
   std::vector<PetscCount> cooStart_;
   std::vector<PetscInt> cooI_, cooJ_;
   std::vector<PetscScalar> cooV_;
@@ -114,7 +121,8 @@ private:
   const PetscScalar *xl_ = nullptr;   // its array
   Kinematics kin_;                    // the map's coefficients
   std::vector<double> bq_, bv_, ba_, bl_, br_; // per-item buffers (the Jacobian goes into cooV_; q, v, a
-                                               // hold kPencilPasses blocks for evaluatePencil)
+                                               // hold kPencilPasses blocks for evaluatePencil, and all
+                                               // of them kResidualBatch blocks for batched residuals)
 };
 
 } // namespace boomdyn

@@ -20,6 +20,12 @@ public:
   // A damped element: one damping kernel call for the stiffness pass's
   // dfd/dq and the damping pass's dfd/dv, the mass pass without any kernel.
   void evaluatePencil(const PencilPass (&pass)[kPencilPasses], int n, double *scratch) const override;
+  // Undamped elements of one beam (same length and section): their internal
+  // forces in one batched kernel call (ancf::internalForceBatch), bit for
+  // bit evaluate()'s residuals. Damped elements are not batched (key null).
+  const void *residualBatchKey() const override;
+  void evaluateResiduals(const AssemblyContext &ctx, const WorkItem *const items[], const ItemValues in[],
+                         double *const residual[], int count) const override;
   void energy(const AssemblyContext &ctx, const ItemValues &in, EnergyParts &e) const override;
   bool energyAndDampingForce(const AssemblyContext &ctx, const ItemValues &in, EnergyParts &e,
                              double *f) const override;

@@ -53,6 +53,13 @@ private:
   MPI_Comm comm_ = MPI_COMM_NULL;
   std::vector<unsigned char> block_; // per owned entry
   std::vector<double> zFloor_;       // per owned entry (friction states only)
+  // Maximal runs of consecutive entries of one block (begin, end, block):
+  // test() sums each run in registers.
+  struct Run {
+    std::size_t begin, end;
+    int block;
+  };
+  std::vector<Run> runs_;
   std::array<int, NumBlocks> present_{};
   std::array<double, NumBlocks> initialResidual_{};
   std::array<double, NumBlocks> previousIncrement_{};

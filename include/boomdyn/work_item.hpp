@@ -94,6 +94,8 @@ struct PencilPass {
 // The passes, in this order: stiffness A (cQ = 1, constraint blocks),
 // mass B (cA = 1), damping D (cV = 1).
 constexpr int kPencilPasses = 3;
+// Largest number of items one evaluateResiduals() call receives.
+constexpr int kResidualBatch = 4;
 
 class WorkItem {
 public:
@@ -113,6 +115,16 @@ public:
   // the passes can share work (the same kernel on the same values: a beam's
   // strains, a rope's path geometry, a pad's gap).
   virtual void evaluatePencil(const PencilPass (&pass)[kPencilPasses], int n, double *scratch) const;
+  // Residuals without Jacobians of several items in one call: items that
+  // return the same non-null key and follow one another in the model are
+  // handed to the first one's evaluateResiduals() in groups of up to
+  // kResidualBatch (Assembler::evaluate). Each residual[j] must receive
+  // bitwise what evaluate(ctx, in[j], residual[j], nullptr) adds to it.
+  // The default evaluates them one by one; a beam's elements share one SIMD
+  // kernel call (one element per lane).
+  virtual const void *residualBatchKey() const { return nullptr; }
+  virtual void evaluateResiduals(const AssemblyContext &ctx, const WorkItem *const items[], const ItemValues in[],
+                                 double *const residual[], int count) const;
   // Diagnostics at a state.
   virtual void energy(const AssemblyContext &, const ItemValues &, EnergyParts &) const {}
   virtual double constraintViolation(const AssemblyContext &, const ItemValues &) const { return 0; }
@@ -156,6 +168,12 @@ inline void WorkItem::evaluatePencil(const PencilPass (&pass)[kPencilPasses], in
     std::fill(scratch, scratch + n, 0.0);
     evaluate(p.ctx, p.in, scratch, p.J);
   }
+}
+
+inline void WorkItem::evaluateResiduals(const AssemblyContext &ctx, const WorkItem *const items[],
+                                        const ItemValues in[], double *const residual[], int count) const
+{
+  for (int j = 0; j < count; ++j) items[j]->evaluate(ctx, in[j], residual[j], nullptr);
 }
 
 } // namespace boomdyn

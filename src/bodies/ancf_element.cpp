@@ -88,7 +88,23 @@ struct ShapeTable {
   // of the assumed strain's projection (legendre01 below; the same products).
   double legendre1[kGaussPoints + kReducedAxialPoints];
   double projectionWeight[kAssumedTerms][kGaussPoints];
+  // s1, s2 in every lane (the batched kernel's operands: a product with a
+  // lane vector of one value is the product with the value, bit for bit).
+  lanes::Lanes4 s1Lanes[kGaussPoints + kReducedAxialPoints][4], s2Lanes[kGaussPoints + kReducedAxialPoints][4];
 };
+
+// The shape values at point p as the kernel's operand type: doubles, or lanes.
+inline const double *shapeOperands(const Eigen::Vector4d (&s)[kGaussPoints + kReducedAxialPoints],
+                                   const lanes::Lanes4 (&)[kGaussPoints + kReducedAxialPoints][4], int p, double *)
+{
+  return s[p].data();
+}
+inline const lanes::Lanes4 *shapeOperands(const Eigen::Vector4d (&)[kGaussPoints + kReducedAxialPoints],
+                                           const lanes::Lanes4 (&v)[kGaussPoints + kReducedAxialPoints][4], int p,
+                                           lanes::Lanes4 *)
+{
+  return v[p];
+}
 
 
 const ShapeTable &shapeTable(const QuadRule &g, double l)
@@ -106,6 +122,11 @@ const ShapeTable &shapeTable(const QuadRule &g, double l)
     t.s1[p] = shapeValues(g.points[p].xi, l, 1);
     t.s2[p] = shapeValues(g.points[p].xi, l, 2);
     t.legendre1[p] = legendre01(1, g.points[p].xi);
+    for (int k = 0; k < 4; ++k) {
+      const double a = t.s1[p][k], b = t.s2[p][k];
+      t.s1Lanes[p][k] = lanes::Lanes4{a, a, a, a};
+      t.s2Lanes[p][k] = lanes::Lanes4{b, b, b, b};
+    }
   }
   for (int j = 0; j < kAssumedTerms; ++j)
     for (int p = 0; p < kGaussPoints; ++p) t.projectionWeight[j][p] = projectionWeight(j, p);
@@ -363,14 +384,21 @@ namespace {
 // come from the shape table, and r', r'' stay in registers as x and y parts
 // instead of 2-vectors (the Eigen path spent more instructions on moves and
 // shuffles than on its ~400 flops; callgrind, docs/performance.md).
-void internalForceOnly(const Section &sec, double l, const QuadRule &g, const ShapeTable &shapes, const double *e,
-                       double *f)
+// T is double (one element) or ForceLanes (kForceBatch elements of one
+// beam, one per lane): every operation is lane-wise IEEE arithmetic in the
+// same order as the scalar one (no FMA in this build, no reassociation), so
+// each lane is bit for bit the scalar element (test
+// AncfElement.BatchedForceIsBitIdentical). e and f hold 8 values of T.
+// NP: the rule's size (g.size) as a constant, so that the loops over the
+// points unroll (the two rules: 5 points, 8 with reduced axial points).
+template <typename T, int NP>
+void internalForceOnlyN(const Section &sec, double l, const QuadRule &g, const ShapeTable &shapes, const T *e, T *f)
 {
-  constexpr int kMax = kGaussPoints + kReducedAxialPoints;
-  double r1x[kMax], r1y[kMax], r2x[kMax], r2y[kMax];
-  for (int p = 0; p < g.size; ++p) {
-    const double *s1 = shapes.s1[p].data(), *s2 = shapes.s2[p].data();
-    double ax = 0, ay = 0, bx = 0, by = 0;
+  T r1x[NP], r1y[NP], r2x[NP], r2y[NP];
+  for (int p = 0; p < NP; ++p) {
+    const auto *s1 = shapeOperands(shapes.s1, shapes.s1Lanes, p, static_cast<T *>(nullptr));
+    const auto *s2 = shapeOperands(shapes.s2, shapes.s2Lanes, p, static_cast<T *>(nullptr));
+    T ax{}, ay{}, bx{}, by{};
     for (int k = 0; k < 4; ++k) {
       ax += s1[k] * e[2 * k];
       ay += s1[k] * e[2 * k + 1];
@@ -382,37 +410,48 @@ void internalForceOnly(const Section &sec, double l, const QuadRule &g, const Sh
   // projectAxialStrain(.., gradients = false) with the slopes above.
   const double gamma = assumedPointwiseWeight(sec, l);
   const bool projected = sec.axialIntegration == AxialIntegration::Assumed && gamma < 1.0;
-  double alpha0 = 0, alpha1 = 0;
+  T alpha0{}, alpha1{};
   if (projected)
     for (int p = 0; p < kGaussPoints; ++p) {
-      const double eps = 0.5 * ((r1x[p] * r1x[p] + r1y[p] * r1y[p]) - 1.0);
+      const T eps = 0.5 * ((r1x[p] * r1x[p] + r1y[p] * r1y[p]) - 1.0);
       alpha0 += shapes.projectionWeight[0][p] * eps;
       alpha1 += shapes.projectionWeight[1][p] * eps;
     }
   const double EAproj = (1.0 - gamma) * sec.EA;
-  double fl[8] = {0, 0, 0, 0, 0, 0, 0, 0};
-  for (int p = 0; p < g.size; ++p) {
+  T fl[8] = {};
+  for (int p = 0; p < NP; ++p) {
     const QuadPoint &q = g.points[p];
     const double EA = q.axial * gamma * sec.EA, EI = q.bending * sec.EI;
-    const double *s1 = shapes.s1[p].data(), *s2 = shapes.s2[p].data();
+    const auto *s1 = shapeOperands(shapes.s1, shapes.s1Lanes, p, static_cast<T *>(nullptr));
+    const auto *s2 = shapeOperands(shapes.s2, shapes.s2Lanes, p, static_cast<T *>(nullptr));
     const double wx = q.w * l;
-    const double J2 = r1x[p] * r1x[p] + r1y[p] * r1y[p], iJ2 = 1.0 / J2;
-    const double eps = 0.5 * (J2 - 1.0);
-    const double K = (r1x[p] * r2y[p] - r1y[p] * r2x[p]) * iJ2;
+    const T J2 = r1x[p] * r1x[p] + r1y[p] * r1y[p], iJ2 = 1.0 / J2;
+    const T eps = 0.5 * (J2 - 1.0);
+    const T K = (r1x[p] * r2y[p] - r1y[p] * r2x[p]) * iJ2;
     // proj.strain(q.xi): alpha_0 phi_0 + alpha_1 phi_1, summed from zero.
-    double strain = 0;
+    T strain{};
     strain += alpha0 * 1.0;
     strain += alpha1 * shapes.legendre1[p];
-    const double N = EA * eps + (projected ? EAproj * strain : 0.0);
-    const double a = N - 2.0 * EI * K * K * iJ2, b = EI * K * iJ2;
-    const double v1x = wx * (a * r1x[p] + b * r2y[p]), v1y = wx * (a * r1y[p] + b * -r2x[p]);
-    const double wb = wx * b, v2x = wb * r1y[p], v2y = wb * -r1x[p];
+    T axial{}; // EAproj * strain, or +0 without the projection
+    if (projected) axial = EAproj * strain;
+    const T N = EA * eps + axial;
+    const T a = N - 2.0 * EI * K * K * iJ2, b = EI * K * iJ2;
+    const T v1x = wx * (a * r1x[p] + b * r2y[p]), v1y = wx * (a * r1y[p] + b * -r2x[p]);
+    const T wb = wx * b, v2x = wb * r1y[p], v2y = wb * -r1x[p];
     for (int k = 0; k < 4; ++k) {
       fl[2 * k] += s1[k] * v1x - s2[k] * v2x;
       fl[2 * k + 1] += s1[k] * v1y - s2[k] * v2y;
     }
   }
   for (int i = 0; i < 8; ++i) f[i] = fl[i];
+}
+
+template <typename T>
+void internalForceOnly(const Section &sec, double l, const QuadRule &g, const ShapeTable &shapes, const T *e, T *f)
+{
+  static_assert(kGaussPoints == 5 && kGaussPoints + kReducedAxialPoints == 8, "the two rules' sizes");
+  if (g.size == kGaussPoints) internalForceOnlyN<T, kGaussPoints>(sec, l, g, shapes, e, f);
+  else internalForceOnlyN<T, kGaussPoints + kReducedAxialPoints>(sec, l, g, shapes, e, f);
 }
 
 // r' and r'' at every point of the rule g, for the kernels with a tangent
@@ -435,7 +474,7 @@ void internalForce(const Section &sec, double l, const Vec8 &e, Vec8 &f, Mat8 *K
 {
   const QuadRule &g = quadRule(sec.axialIntegration);
   if (!Kt) {
-    internalForceOnly(sec, l, g, shapeTable(g, l), e.data(), f.data());
+    internalForceOnly<double>(sec, l, g, shapeTable(g, l), e.data(), f.data());
     return;
   }
   const ShapeTable &shapes = shapeTable(g, l);
@@ -488,6 +527,22 @@ void internalForce(const Section &sec, double l, const Vec8 &e, Vec8 &f, Mat8 *K
   if (!Kt) return;
   addKronecker(P, Q, *Kt);
   for (int j = 0; j < proj.n; ++j) Kt->noalias() += (EAproj * l) * proj.grad[j] * proj.grad[j].transpose();
+}
+
+void internalForceLanes(const Section &sec, double l, const ForceLanes e[8], ForceLanes f[8])
+{
+  const QuadRule &g = quadRule(sec.axialIntegration);
+  internalForceOnly<ForceLanes>(sec, l, g, shapeTable(g, l), e, f);
+}
+
+void internalForceBatch(const Section &sec, double l, const double *const e[kForceBatch], double *const f[kForceBatch])
+{
+  // Lanes in, one element per lane (the transpose of kForceBatch element
+  // vectors), the scalar kernel's operations on the lanes, lanes out.
+  ForceLanes el[8], fl[8];
+  lanes::gatherLanes(e, 0, el), lanes::gatherLanes(e, 4, el + 4);
+  internalForceLanes(sec, l, el, fl);
+  lanes::scatterLanes(fl, f, 0), lanes::scatterLanes(fl + 4, f, 4);
 }
 
 namespace {

@@ -1,5 +1,7 @@
 #include "boomdyn/beam_element_item.hpp"
 
+#include "boomdyn/lanes.hpp"
+
 #include <cmath>
 #include <cstring>
 #include <limits>
@@ -114,6 +116,55 @@ void BeamElementItem::evaluate(const AssemblyContext &ctx, const ItemValues &in,
   inertiaAndForces(in.a, f, ctx.loadFactor, residual);
   // Undamped sections skip this entirely (no cost, results bit-identical).
   if (sec.damped()) addDamping(ctx, in, residual, J);
+}
+
+const void *BeamElementItem::residualBatchKey() const
+{
+  return beam_->section().damped() ? nullptr : static_cast<const void *>(beam_);
+}
+
+void BeamElementItem::evaluateResiduals(const AssemblyContext &ctx, const WorkItem *const items[],
+                                        const ItemValues in[], double *const residual[], int count) const
+{
+  static_assert(ancf::kForceBatch == kResidualBatch, "one kernel call per batch of residuals");
+  if (count != ancf::kForceBatch || beam_->section().damped()) {
+    WorkItem::evaluateResiduals(ctx, items, in, residual, count);
+    return;
+  }
+  // The undamped residual path of evaluate() (internalForce without a
+  // tangent, then inertiaAndForces) on lanes, one element per lane; the
+  // items share this item's beam (same key), so its length and section.
+  using Lanes = ancf::ForceLanes;
+  const BeamElementItem *const *beams = reinterpret_cast<const BeamElementItem *const *>(items);
+  const double *qs[lanes::kWidth], *as[lanes::kWidth], *gs[lanes::kWidth];
+  for (int j = 0; j < lanes::kWidth; ++j) qs[j] = in[j].q, as[j] = in[j].a, gs[j] = beams[j]->gravity_.data();
+  Lanes q[8], f[8];
+  lanes::gatherLanes(qs, 0, q), lanes::gatherLanes(qs, 4, q + 4);
+  ancf::internalForceLanes(beam_->section(), beam_->elementLength(), q, f);
+  bool sameMass = kroneckerMass_;
+  for (int j = 1; j < count; ++j) sameMass = sameMass && beams[j]->mass_ == mass_;
+  if (!sameMass) {
+    for (int j = 0; j < count; ++j) {
+      ancf::Vec8 fj;
+      for (int i = 0; i < 8; ++i) fj[i] = f[i][j];
+      beams[j]->inertiaAndForces(in[j].a, fj, ctx.loadFactor, residual[j]);
+    }
+    return;
+  }
+  // inertiaAndForces' Kronecker path lane by lane: per entry 2i+d the
+  // products m_ik a_(2k+d) summed from zero in k's order, then
+  // (s + f) - loadFactor g, each item with its own gravity force.
+  const ancf::Mat8 &M = *mass_;
+  Lanes a[8], g[8], r[8];
+  lanes::gatherLanes(as, 0, a), lanes::gatherLanes(as, 4, a + 4);
+  lanes::gatherLanes(gs, 0, g), lanes::gatherLanes(gs, 4, g + 4);
+  for (int i = 0; i < 4; ++i)
+    for (int d = 0; d < 2; ++d) {
+      Lanes s{};
+      for (int k = 0; k < 4; ++k) s += M(2 * i, 2 * k) * a[2 * k + d];
+      r[2 * i + d] = (s + f[2 * i + d]) - ctx.loadFactor * g[2 * i + d];
+    }
+  lanes::scatterLanes(r, residual, 0), lanes::scatterLanes(r + 4, residual, 4);
 }
 
 void BeamElementItem::evaluatePencil(const PencilPass (&pass)[kPencilPasses], int n, double *scratch) const

@@ -34,6 +34,10 @@ PetscErrorCode BlockConvergence::setUp(const Model &model, Vec x)
     block_[g - lo] = FrictionStates;
     zFloor_[g - lo] = std::max(f->spec().mu_s, f->spec().mu_c) / f->spec().sigma0;
   }
+  runs_.clear();
+  for (std::size_t i = 0; i < block_.size(); ++i)
+    if (runs_.empty() || runs_.back().block != block_[i]) runs_.push_back({i, i + 1, block_[i]});
+    else runs_.back().end = i + 1;
   std::array<int, NumBlocks> local{};
   for (unsigned char b : block_) local[b] = 1;
   PetscCallMPI(MPI_Allreduce(local.data(), present_.data(), NumBlocks, MPI_INT, MPI_MAX, comm_));
@@ -54,15 +58,30 @@ PetscErrorCode BlockConvergence::test(PetscInt it, Vec x, Vec dx, Vec F, PetscRe
   PetscCall(VecGetArrayRead(x, &xa));
   PetscCall(VecGetArrayRead(F, &fa));
   if (it > 0) PetscCall(VecGetArrayRead(dx, &da));
-  for (std::size_t i = 0; i < block_.size(); ++i) {
-    const int b = block_[i];
-    local[X2 + b] += xa[i] * xa[i];
-    local[FMAX + b] = std::max(local[FMAX + b], std::abs(fa[i]));
-    local[F2] += fa[i] * fa[i];
+  // Run by run (blocks are long runs: a body's coordinates, the
+  // multipliers), each sum in a register and in the entries' order, so the
+  // same sums as entry by entry through the array (which stored and
+  // reloaded every partial sum: 33 instructions per unknown on the long
+  // boom, a third of a residual's framework cost).
+  double f2 = local[F2];
+  for (const Run &run : runs_) {
+    const int b = run.block;
+    double x2 = local[X2 + b], fmax = local[FMAX + b];
+    for (std::size_t i = run.begin; i < run.end; ++i) {
+      x2 += xa[i] * xa[i];
+      fmax = std::max(fmax, std::abs(fa[i]));
+      f2 += fa[i] * fa[i];
+    }
+    local[X2 + b] = x2, local[FMAX + b] = fmax;
     if (!da) continue;
-    local[D2 + b] += da[i] * da[i];
-    if (b == FrictionStates) local[ZRATIO] = std::max(local[ZRATIO], std::abs(da[i]) / std::max(std::abs(xa[i]), zFloor_[i]));
+    double d2 = local[D2 + b];
+    for (std::size_t i = run.begin; i < run.end; ++i) d2 += da[i] * da[i];
+    local[D2 + b] = d2;
+    if (b == FrictionStates)
+      for (std::size_t i = run.begin; i < run.end; ++i)
+        local[ZRATIO] = std::max(local[ZRATIO], std::abs(da[i]) / std::max(std::abs(xa[i]), zFloor_[i]));
   }
+  local[F2] = f2;
   if (da) PetscCall(VecRestoreArrayRead(dx, &da));
   PetscCall(VecRestoreArrayRead(F, &fa));
   PetscCall(VecRestoreArrayRead(x, &xa));

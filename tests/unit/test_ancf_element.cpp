@@ -172,6 +172,40 @@ TEST(AncfElement, ForceOnlyPathIsBitIdentical)
   for (int k = 0; k < 8; ++k) EXPECT_EQ(e[k], f[k]);
 }
 
+// The batched force kernel (one element per SIMD lane, the residual of a
+// long beam) must give every element's force-only internalForce bit for
+// bit, for the same cases as above, with the lanes' states drawn at very
+// different sizes (so that no lane's rounding is tied to another's), and
+// with a lane whose force overwrites its state.
+TEST(AncfElement, BatchedForceIsBitIdentical)
+{
+  std::mt19937 rng(13);
+  for (AxialIntegration axial : {AxialIntegration::Full, AxialIntegration::Reduced, AxialIntegration::Assumed})
+    for (double beamLength : {0.0, 100.0}) {
+      Section sec = kSteelBox;
+      sec.axialIntegration = axial;
+      sec.length = beamLength;
+      for (double l : {0.25, 1e-3})
+        for (int trial = 0; trial < 50; ++trial) {
+          Vec8 e[kForceBatch], f[kForceBatch], expected[kForceBatch];
+          const double *ep[kForceBatch];
+          double *fp[kForceBatch];
+          for (int j = 0; j < kForceBatch; ++j) {
+            e[j] = deformedState(rng, l, (trial + j) % 2 ? 0.2 : 1e-4 * (j + 1));
+            internalForce(sec, l, e[j], expected[j], nullptr);
+            ep[j] = e[j].data(), fp[j] = f[j].data();
+          }
+          if (trial == 0) fp[1] = e[1].data(); // lane 1 in place
+          internalForceBatch(sec, l, ep, fp);
+          for (int j = 0; j < kForceBatch; ++j)
+            for (int k = 0; k < 8; ++k)
+              EXPECT_EQ(fp[j][k], expected[j][k]) << "axial " << static_cast<int>(axial) << ", L " << beamLength
+                                                  << ", l " << l << ", trial " << trial << ", lane " << j
+                                                  << ", entry " << k;
+        }
+    }
+}
+
 // The damped residual's one-pass kernel must give internalForce's force,
 // dampingForce's force and dampingForce's dissipated power bit for bit: the
 // element keeps its force and power for the energy diagnostics of the state

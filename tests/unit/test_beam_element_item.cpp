@@ -8,6 +8,7 @@
 
 #include <memory>
 #include <random>
+#include <vector>
 
 using namespace boomdyn;
 
@@ -50,5 +51,57 @@ TEST(BeamElementItem, KroneckerMassProductIsBitIdentical)
           EXPECT_EQ(r[k], expected[k]) << (damped ? "damped" : "undamped") << ", l " << l << ", trial " << trial
                                        << ", entry " << k;
       }
+    }
+}
+
+// Residuals of a beam's elements in one batch (evaluateResiduals, one
+// kernel call for four elements; the assembler's residual path) must be
+// evaluate()'s residuals bit for bit; damped elements are not batched (no
+// key) and any count other than the kernel's width falls back to evaluate().
+TEST(BeamElementItem, BatchedResidualsAreBitIdentical)
+{
+  std::mt19937 rng(17);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  for (bool damped : {false, true})
+    for (double l : {0.5, 1e-3}) {
+      ancf::Section sec{2.1e11 * 4.0e-3, 2.1e11 * 2.5e-5, 7850 * 4.0e-3};
+      sec.axialIntegration = ancf::AxialIntegration::Assumed;
+      if (damped) sec.etaA = 1e-3, sec.etaB = 2e-3;
+      const int elements = 6;
+      const AncfBeam beam("boom", l * elements, elements, sec, Vec2(0.3, -0.2), 0.4, 0);
+      auto mass = std::make_shared<const ancf::Mat8>(ancf::massMatrix(sec.rhoA, l));
+      std::vector<std::unique_ptr<BeamElementItem>> owned;
+      const WorkItem *items[kResidualBatch];
+      for (int j = 0; j < kResidualBatch; ++j) {
+        owned.push_back(std::make_unique<BeamElementItem>(beam, 1 + j, mass, Vec2(0.0, -9.81)));
+        items[j] = owned.back().get();
+      }
+      EXPECT_EQ(items[0]->residualBatchKey() != nullptr, !damped);
+      EXPECT_EQ(items[0]->residualBatchKey(), items[3]->residualBatchKey());
+      for (int count : {kResidualBatch, 3})
+        for (int trial = 0; trial < 50; ++trial) {
+          ancf::Vec8 q[kResidualBatch], v[kResidualBatch], a[kResidualBatch];
+          ItemValues in[kResidualBatch];
+          double r[kResidualBatch][8] = {}, expected[kResidualBatch][8] = {};
+          double *rp[kResidualBatch];
+          AssemblyContext ctx;
+          ctx.loadFactor = 0.5 + 0.5 * u(rng);
+          for (int j = 0; j < count; ++j) {
+            q[j] = ancf::straightElement(Vec2(u(rng), u(rng)), Vec2(std::cos(0.4), std::sin(0.4)), l);
+            for (int k = 0; k < 8; ++k) {
+              q[j][k] += 1e-3 * u(rng) * ((k % 4) < 2 ? l : 1.0);
+              v[j][k] = u(rng) * std::exp(5 * u(rng));
+              a[j][k] = u(rng) * std::exp(10 * u(rng));
+            }
+            in[j].q = q[j].data(), in[j].v = v[j].data(), in[j].a = a[j].data();
+            rp[j] = r[j];
+            items[j]->evaluate(ctx, in[j], expected[j], nullptr);
+          }
+          items[0]->evaluateResiduals(ctx, items, in, rp, count);
+          for (int j = 0; j < count; ++j)
+            for (int k = 0; k < 8; ++k)
+              EXPECT_EQ(r[j][k], expected[j][k]) << (damped ? "damped" : "undamped") << ", l " << l << ", count "
+                                                 << count << ", trial " << trial << ", item " << j << ", entry " << k;
+        }
     }
 }
