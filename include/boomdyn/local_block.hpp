@@ -27,13 +27,15 @@ public:
   PetscInt localSize() const { return n_; }
   PetscInt firstRow() const { return lo_; } // global index of local row 0
 
-  // G = A^T B summed over the ranks (A, B: local rows, same row count).
+  // G = A^T B summed over the ranks (A, B: local rows, same row count). The
+  // local part as dot products, four columns of A per pass over a column of
+  // B (Eigen's general product packs both operands first: 1.6-3x slower at
+  // the refinements' shapes).
   PetscErrorCode inner(const Eigen::Ref<const Eigen::MatrixXd> &A, const Eigen::Ref<const Eigen::MatrixXd> &B,
                        Eigen::MatrixXd *G) const;
   // G = A^T B summed over the ranks for a square result known to be
-  // symmetric (A^T M A with M symmetric): the upper triangle computed
-  // (Eigen's triangular product: 22-27 % fewer instructions than the full
-  // product at 10-16 columns, n = 221), the lower one its mirror image.
+  // symmetric (A^T M A with M symmetric): the upper triangle computed (the
+  // dot products of inner()), the lower one its mirror image.
   PetscErrorCode innerSymmetric(const Eigen::Ref<const Eigen::MatrixXd> &A,
                                 const Eigen::Ref<const Eigen::MatrixXd> &B, Eigen::MatrixXd *G) const;
   // Euclidean norms of the columns of A over all ranks.
