@@ -99,6 +99,16 @@ bool stiffnessAndDampingAtRest(const Section &sec, double l, const Vec8 &e, cons
 // operations per Gauss point: the element keeps it with fd for the energy
 // diagnostics of the state Newton ends on).
 double internalAndDampingForce(const Section &sec, double l, const Vec8 &e, const Vec8 &edot, Vec8 &f, Vec8 &fd);
+// The same for kForceBatch elements of one length and section at once, bit
+// for bit (one element per SIMD lane, as internalForceBatch): the residual
+// of a damped beam's elements in batches (BeamElementItem). power[j] is
+// element j's dissipated power; f_j and fd_j may alias e_j or edot_j.
+void internalAndDampingForceBatch(const Section &sec, double l, const double *const e[kForceBatch],
+                                  const double *const edot[kForceBatch], double *const f[kForceBatch],
+                                  double *const fd[kForceBatch], double power[kForceBatch]);
+// The same on lanes (e[i], edot[i]: entry i of every element); returns the powers.
+ForceLanes internalAndDampingForceLanes(const Section &sec, double l, const ForceLanes e[8], const ForceLanes edot[8],
+                                        ForceLanes f[8], ForceLanes fd[8]);
 
 // Axial strain and material curvature at xi (for output and tests).
 double axialStrain(const Vec8 &e, double xi, double l);

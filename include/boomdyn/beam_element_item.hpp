@@ -20,9 +20,10 @@ public:
   // A damped element: one damping kernel call for the stiffness pass's
   // dfd/dq and the damping pass's dfd/dv, the mass pass without any kernel.
   void evaluatePencil(const PencilPass (&pass)[kPencilPasses], int n, double *scratch) const override;
-  // Undamped elements of one beam (same length and section): their internal
-  // forces in one batched kernel call (ancf::internalForceBatch), bit for
-  // bit evaluate()'s residuals. Damped elements are not batched (key null).
+  // Elements of one beam (same length and section): their internal forces,
+  // and damping forces when damped, in one batched kernel call
+  // (ancf::internalForceLanes, ancf::internalAndDampingForceLanes), bit for
+  // bit evaluate()'s residuals, damping memo included.
   const void *residualBatchKey() const override;
   void evaluateResiduals(const AssemblyContext &ctx, const WorkItem *const items[], const ItemValues in[],
                          double *const residual[], int count) const override;
@@ -37,15 +38,23 @@ public:
   void inertiaAndForces(const double *a, const ancf::Vec8 &f, double loadFactor, double *residual) const;
   // M v, bit-identical to Eigen's (*mass_) * v (the Kronecker form when M = m ⊗ I2).
   ancf::Vec8 massTimes(const double *v) const;
+  // True when the damping force and power at in's (q, v) are kept (tests:
+  // a residual, batched or not, keeps those of its state).
+  bool dampingKeptAt(const ItemValues &in) const
+  {
+    return dampingMemo_.valid && dampingMemo_.q == Eigen::Map<const ancf::Vec8>(in.q) &&
+           dampingMemo_.v == Eigen::Map<const ancf::Vec8>(in.v);
+  }
 
 private:
   // Kelvin-Voigt damping force into the residual, D (times cV) and dfd/dq (times cQ) into J.
   void addDamping(const AssemblyContext &ctx, const ItemValues &in, double *residual, double *J) const;
 
   // Damping force and dissipated power at (q, v), kept for the last state
-  // (also by the residual of a damped element, evaluate()): after every step
-  // the energy diagnostics (energy()) and the energy check (dampingForce())
-  // ask for the state of Newton's last residual.
+  // (also by the residual of a damped element, evaluate() and
+  // evaluateResiduals()): after every step the energy diagnostics (energy())
+  // and the energy check (dampingForce()) ask for the state of Newton's last
+  // residual.
   double dampingAt(const ItemValues &in, ancf::Vec8 &fd) const;
   // energy(), leaving the damping force in fd (damped sections; untouched otherwise).
   void energyAt(const AssemblyContext &ctx, const ItemValues &in, EnergyParts &e, ancf::Vec8 &fd) const;

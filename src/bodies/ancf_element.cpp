@@ -727,50 +727,144 @@ double dampingForceSummed(const Section &sec, double l, const Vec8 &e, const Vec
   return dampingForceImpl(sec, l, e, edot, fd, Kq, Dv, false);
 }
 
-double internalAndDampingForce(const Section &sec, double l, const Vec8 &e, const Vec8 &edot, Vec8 &f, Vec8 &fd)
+namespace {
+
+// internalAndDampingForce on T = double (one element) or ForceLanes (four
+// elements of one beam, one per lane), like internalForceOnlyN: the
+// operations of internalForce(.., nullptr) and dampingForce(.., nullptr,
+// nullptr) on scalars (r', r'' and their rates as x and y parts, not
+// 2-vectors), each force accumulated in the order of its own function, so
+// that both forces and the power are bit for bit theirs (tests
+// AncfElement.InternalAndDampingForceIsBitIdentical and
+// AncfElement.BatchedDampedForceIsBitIdentical). Shared: the shape values,
+// r', r'', 1/|r'|^2, K and the axial projection; of the projection only
+// alpha, its rate and d alpha/de (the damping force's projected part) are
+// formed, not the d alphadot/de that projectAxialStrain also builds.
+// e, edot, f, fd hold 8 values of T; f and fd are written after the last
+// read of e and edot (they may alias them). Returns the dissipated power.
+template <typename T, int NP>
+T internalAndDampingForceN(const Section &sec, double l, const QuadRule &g, const ShapeTable &shapes, const T *e,
+                           const T *edot, T *f, T *fd)
 {
-  // internalForce(.., nullptr) and dampingForce(.., nullptr, nullptr) in one
-  // pass: the shape functions, r', r'' and the axial projection are shared.
-  // Each force is accumulated with the same operations in the same order as
-  // in those two functions, so the results are bit-identical to calling them.
+  // slopesAndRates at every point: r', r'' and their rates, sums from zero in k's order.
+  T r1x[NP], r1y[NP], r2x[NP], r2y[NP], d1x[NP], d1y[NP], d2x[NP], d2y[NP];
+  for (int p = 0; p < NP; ++p) {
+    const auto *s1 = shapeOperands(shapes.s1, shapes.s1Lanes, p, static_cast<T *>(nullptr));
+    const auto *s2 = shapeOperands(shapes.s2, shapes.s2Lanes, p, static_cast<T *>(nullptr));
+    T ax{}, ay{}, bx{}, by{}, cx{}, cy{}, dx{}, dy{};
+    for (int k = 0; k < 4; ++k) {
+      ax += s1[k] * e[2 * k], ay += s1[k] * e[2 * k + 1];
+      bx += s2[k] * e[2 * k], by += s2[k] * e[2 * k + 1];
+      cx += s1[k] * edot[2 * k], cy += s1[k] * edot[2 * k + 1];
+      dx += s2[k] * edot[2 * k], dy += s2[k] * edot[2 * k + 1];
+    }
+    r1x[p] = ax, r1y[p] = ay, r2x[p] = bx, r2y[p] = by;
+    d1x[p] = cx, d1y[p] = cy, d2x[p] = dx, d2y[p] = dy;
+  }
+  // projectAxialStrain(.., &edot, gradients = true) with the slopes above
+  // (the same 5 points: Assumed uses the full rule): alpha_j, alphadot_j and
+  // grad_j = sum_p w_p phi_j (s1 ⊗ r1), each from zero in p's order.
+  const double gamma = assumedPointwiseWeight(sec, l);
+  const bool projected = sec.axialIntegration == AxialIntegration::Assumed && gamma < 1.0;
+  T alpha[kAssumedTerms] = {}, alphaDot[kAssumedTerms] = {}, grad[kAssumedTerms][8] = {};
+  if (projected)
+    for (int p = 0; p < kGaussPoints; ++p) {
+      const auto *s1 = shapeOperands(shapes.s1, shapes.s1Lanes, p, static_cast<T *>(nullptr));
+      const T eps = 0.5 * ((r1x[p] * r1x[p] + r1y[p] * r1y[p]) - 1.0);
+      const T epsRate = r1x[p] * d1x[p] + r1y[p] * d1y[p];
+      for (int j = 0; j < kAssumedTerms; ++j) {
+        const double wp = shapes.projectionWeight[j][p];
+        alpha[j] += wp * eps;
+        alphaDot[j] += wp * epsRate;
+        for (int k = 0; k < 4; ++k) {
+          grad[j][2 * k] += wp * (s1[k] * r1x[p]);
+          grad[j][2 * k + 1] += wp * (s1[k] * r1y[p]);
+        }
+      }
+    }
+  const double EAproj = (1.0 - gamma) * sec.EA;
+  const double cproj = (1.0 - gamma) * sec.EA * sec.etaA * l;
+  T fl[8] = {}, fdl[8] = {}, power{};
+  for (int p = 0; p < NP; ++p) {
+    const QuadPoint &q = g.points[p];
+    const auto *s1 = shapeOperands(shapes.s1, shapes.s1Lanes, p, static_cast<T *>(nullptr));
+    const auto *s2 = shapeOperands(shapes.s2, shapes.s2Lanes, p, static_cast<T *>(nullptr));
+    const double wx = q.w * l;
+    const T J2 = r1x[p] * r1x[p] + r1y[p] * r1y[p], iJ2 = 1.0 / J2;
+    const T K = (r1x[p] * r2y[p] - r1y[p] * r2x[p]) * iJ2;
+    // Internal force (internalForceOnlyN's operations).
+    const double EA = q.axial * gamma * sec.EA, EI = q.bending * sec.EI;
+    const T eps = 0.5 * (J2 - 1.0);
+    T strain{};
+    strain += alpha[0] * 1.0;
+    strain += alpha[1] * shapes.legendre1[p];
+    T axial{}; // EAproj * strain, or +0 without the projection
+    if (projected) axial = EAproj * strain;
+    const T N = EA * eps + axial;
+    const T a = N - 2.0 * EI * K * K * iJ2, b = EI * K * iJ2;
+    const T v1x = wx * (a * r1x[p] + b * r2y[p]), v1y = wx * (a * r1y[p] + b * -r2x[p]);
+    const T wb = wx * b, v2x = wb * r1y[p], v2y = wb * -r1x[p];
+    for (int k = 0; k < 4; ++k) {
+      fl[2 * k] += s1[k] * v1x - s2[k] * v2x;
+      fl[2 * k + 1] += s1[k] * v1y - s2[k] * v2y;
+    }
+    // Damping force (dampingForceImpl's force-only branch).
+    const double ca = wx * gamma * sec.EA * sec.etaA * q.axial, cb = wx * sec.EI * sec.etaB * q.bending;
+    const T epsdot = r1x[p] * d1x[p] + r1y[p] * d1y[p];
+    const T Kdot = ((d1x[p] * r2y[p] - d1y[p] * r2x[p]) + (r1x[p] * d2y[p] - r1y[p] * d2x[p]) - 2.0 * K * epsdot) * iJ2;
+    power += ca * epsdot * epsdot + cb * Kdot * Kdot;
+    const T bK = cb * Kdot * iJ2, ce = ca * epsdot, K2 = 2.0 * K;
+    const T u1x = ce * r1x[p] + bK * (r2y[p] - K2 * r1x[p]), u1y = ce * r1y[p] + bK * (-r2x[p] - K2 * r1y[p]);
+    const T u2x = bK * r1y[p], u2y = bK * -r1x[p];
+    for (int k = 0; k < 4; ++k) {
+      fdl[2 * k] += s1[k] * u1x - s2[k] * u2x;
+      fdl[2 * k + 1] += s1[k] * u1y - s2[k] * u2y;
+    }
+  }
+  // The projected axial strain rate: fd += c alphadot_j grad_j.
+  if (projected)
+    for (int j = 0; j < kAssumedTerms; ++j) {
+      const T c = cproj * alphaDot[j];
+      for (int i = 0; i < 8; ++i) fdl[i] += c * grad[j][i];
+      power += cproj * alphaDot[j] * alphaDot[j];
+    }
+  for (int i = 0; i < 8; ++i) f[i] = fl[i], fd[i] = fdl[i];
+  return power;
+}
+
+template <typename T>
+T internalAndDampingForceT(const Section &sec, double l, const T *e, const T *edot, T *f, T *fd)
+{
   const QuadRule &g = quadRule(sec.axialIntegration);
   const ShapeTable &shapes = shapeTable(g, l);
-  const AxialProjection proj = projectAxialStrain(sec, l, shapes, e, &edot, true);
-  const double EAproj = (1.0 - proj.gamma) * sec.EA;
-  const double cproj = (1.0 - proj.gamma) * sec.EA * sec.etaA * l;
-  Vec8 fl = Vec8::Zero(), fdl = Vec8::Zero(); // local accumulators: f, fd may alias e or edot
-  double power = 0;
-  for (int p = 0; p < g.size; ++p) {
-    const QuadPoint &q = g.points[p];
-    const Eigen::Vector4d &s1 = shapes.s1[p], &s2 = shapes.s2[p];
-    Vec2 r1, r2, r1d, r2d;
-    slopesAndRates(s1, s2, e, edot, r1, r2, r1d, r2d);
-    const double wx = q.w * l;
-    const double J2 = r1.squaredNorm(), iJ2 = 1.0 / J2;
-    const double K = cross(r1, r2) * iJ2;
-    // Internal force (internalForce).
-    const double EA = q.axial * proj.gamma * sec.EA, EI = q.bending * sec.EI;
-    const double eps = 0.5 * (J2 - 1.0);
-    const double N = EA * eps + (proj.n ? EAproj * proj.strain(q.xi) : 0.0);
-    const double a = N - 2.0 * EI * K * K * iJ2, b = EI * K * iJ2;
-    const Vec2 v1 = wx * (a * r1 + b * rotCW(r2)), v2 = (wx * b) * rotCW(r1);
-    for (int k = 0; k < 4; ++k) fl.segment<2>(2 * k) += s1[k] * v1 - s2[k] * v2;
-    // Damping force (dampingForce, force only).
-    const double ca = wx * proj.gamma * sec.EA * sec.etaA * q.axial, cb = wx * sec.EI * sec.etaB * q.bending;
-    const double epsdot = r1.dot(r1d);
-    const double Kdot = (cross(r1d, r2) + cross(r1, r2d) - 2.0 * K * epsdot) * iJ2;
-    power += ca * epsdot * epsdot + cb * Kdot * Kdot;
-    const double bK = cb * Kdot * iJ2;
-    const Vec2 u1 = (ca * epsdot) * r1 + bK * (rotCW(r2) - (2.0 * K) * r1), u2 = bK * rotCW(r1);
-    for (int k = 0; k < 4; ++k) fdl.segment<2>(2 * k) += s1[k] * u1 - s2[k] * u2;
-  }
-  for (int j = 0; j < proj.n; ++j) {
-    fdl += (cproj * proj.alphaDot[j]) * proj.grad[j];
-    power += cproj * proj.alphaDot[j] * proj.alphaDot[j];
-  }
-  f = fl;
-  fd = fdl;
-  return power;
+  if (g.size == kGaussPoints) return internalAndDampingForceN<T, kGaussPoints>(sec, l, g, shapes, e, edot, f, fd);
+  return internalAndDampingForceN<T, kGaussPoints + kReducedAxialPoints>(sec, l, g, shapes, e, edot, f, fd);
+}
+
+} // namespace
+
+double internalAndDampingForce(const Section &sec, double l, const Vec8 &e, const Vec8 &edot, Vec8 &f, Vec8 &fd)
+{
+  return internalAndDampingForceT<double>(sec, l, e.data(), edot.data(), f.data(), fd.data());
+}
+
+ForceLanes internalAndDampingForceLanes(const Section &sec, double l, const ForceLanes e[8], const ForceLanes edot[8],
+                                        ForceLanes f[8], ForceLanes fd[8])
+{
+  return internalAndDampingForceT<ForceLanes>(sec, l, e, edot, f, fd);
+}
+
+void internalAndDampingForceBatch(const Section &sec, double l, const double *const e[kForceBatch],
+                                  const double *const edot[kForceBatch], double *const f[kForceBatch],
+                                  double *const fd[kForceBatch], double power[kForceBatch])
+{
+  ForceLanes el[8], vl[8], fl[8], fdl[8];
+  lanes::gatherLanes(e, 0, el), lanes::gatherLanes(e, 4, el + 4);
+  lanes::gatherLanes(edot, 0, vl), lanes::gatherLanes(edot, 4, vl + 4);
+  const ForceLanes p = internalAndDampingForceLanes(sec, l, el, vl, fl, fdl);
+  lanes::scatterLanes(fl, f, 0), lanes::scatterLanes(fl + 4, f, 4);
+  lanes::scatterLanes(fdl, fd, 0), lanes::scatterLanes(fdl + 4, fd, 4);
+  lanes::store(power, p);
 }
 
 Vec8 straightElement(const Vec2 &p0, const Vec2 &dir, double l)

@@ -118,29 +118,45 @@ void BeamElementItem::evaluate(const AssemblyContext &ctx, const ItemValues &in,
   if (sec.damped()) addDamping(ctx, in, residual, J);
 }
 
-const void *BeamElementItem::residualBatchKey() const
-{
-  return beam_->section().damped() ? nullptr : static_cast<const void *>(beam_);
-}
+const void *BeamElementItem::residualBatchKey() const { return static_cast<const void *>(beam_); }
 
 void BeamElementItem::evaluateResiduals(const AssemblyContext &ctx, const WorkItem *const items[],
                                         const ItemValues in[], double *const residual[], int count) const
 {
   static_assert(ancf::kForceBatch == kResidualBatch, "one kernel call per batch of residuals");
-  if (count != ancf::kForceBatch || beam_->section().damped()) {
+  if (count != ancf::kForceBatch) {
     WorkItem::evaluateResiduals(ctx, items, in, residual, count);
     return;
   }
-  // The undamped residual path of evaluate() (internalForce without a
-  // tangent, then inertiaAndForces) on lanes, one element per lane; the
-  // items share this item's beam (same key), so its length and section.
+  // The residual paths of evaluate() on lanes, one element per lane: the
+  // internal force (undamped), or internal and damping force with the
+  // dissipated power (damped), then inertiaAndForces (+ fd). The items
+  // share this item's beam (same key), so its length and section.
   using Lanes = ancf::ForceLanes;
   const BeamElementItem *const *beams = reinterpret_cast<const BeamElementItem *const *>(items);
+  const ancf::Section &sec = beam_->section();
+  const bool damped = sec.damped();
   const double *qs[lanes::kWidth], *as[lanes::kWidth], *gs[lanes::kWidth];
   for (int j = 0; j < lanes::kWidth; ++j) qs[j] = in[j].q, as[j] = in[j].a, gs[j] = beams[j]->gravity_.data();
-  Lanes q[8], f[8];
+  Lanes q[8], f[8], fd[8];
   lanes::gatherLanes(qs, 0, q), lanes::gatherLanes(qs, 4, q + 4);
-  ancf::internalForceLanes(beam_->section(), beam_->elementLength(), q, f);
+  if (damped) {
+    const double *vs[lanes::kWidth];
+    double *fds[lanes::kWidth];
+    for (int j = 0; j < lanes::kWidth; ++j) vs[j] = in[j].v, fds[j] = beams[j]->dampingMemo_.fd.data();
+    Lanes v[8];
+    lanes::gatherLanes(vs, 0, v), lanes::gatherLanes(vs, 4, v + 4);
+    const Lanes power = ancf::internalAndDampingForceLanes(sec, beam_->elementLength(), q, v, f, fd);
+    // Each item keeps its damping force and power for dampingAt, as evaluate() does.
+    lanes::scatterLanes(fd, fds, 0), lanes::scatterLanes(fd + 4, fds, 4);
+    for (int j = 0; j < lanes::kWidth; ++j) {
+      DampingMemo &m = beams[j]->dampingMemo_;
+      m.q = Eigen::Map<const ancf::Vec8>(in[j].q), m.v = Eigen::Map<const ancf::Vec8>(in[j].v);
+      m.power = power[j], m.valid = true;
+    }
+  } else {
+    ancf::internalForceLanes(sec, beam_->elementLength(), q, f);
+  }
   bool sameMass = kroneckerMass_;
   for (int j = 1; j < count; ++j) sameMass = sameMass && beams[j]->mass_ == mass_;
   if (!sameMass) {
@@ -148,12 +164,14 @@ void BeamElementItem::evaluateResiduals(const AssemblyContext &ctx, const WorkIt
       ancf::Vec8 fj;
       for (int i = 0; i < 8; ++i) fj[i] = f[i][j];
       beams[j]->inertiaAndForces(in[j].a, fj, ctx.loadFactor, residual[j]);
+      if (damped) Eigen::Map<ancf::Vec8>{residual[j]} += beams[j]->dampingMemo_.fd;
     }
     return;
   }
   // inertiaAndForces' Kronecker path lane by lane: per entry 2i+d the
   // products m_ik a_(2k+d) summed from zero in k's order, then
-  // (s + f) - loadFactor g, each item with its own gravity force.
+  // (s + f) - loadFactor g, each item with its own gravity force; then + fd
+  // when damped (evaluate()'s r += fd).
   const ancf::Mat8 &M = *mass_;
   Lanes a[8], g[8], r[8];
   lanes::gatherLanes(as, 0, a), lanes::gatherLanes(as, 4, a + 4);
@@ -164,6 +182,8 @@ void BeamElementItem::evaluateResiduals(const AssemblyContext &ctx, const WorkIt
       for (int k = 0; k < 4; ++k) s += M(2 * i, 2 * k) * a[2 * k + d];
       r[2 * i + d] = (s + f[2 * i + d]) - ctx.loadFactor * g[2 * i + d];
     }
+  if (damped)
+    for (int i = 0; i < 8; ++i) r[i] += fd[i];
   lanes::scatterLanes(r, residual, 0), lanes::scatterLanes(r + 4, residual, 4);
 }
 

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
 #include <random>
 
 using namespace boomdyn::ancf;
@@ -202,6 +203,49 @@ TEST(AncfElement, BatchedForceIsBitIdentical)
               EXPECT_EQ(fp[j][k], expected[j][k]) << "axial " << static_cast<int>(axial) << ", L " << beamLength
                                                   << ", l " << l << ", trial " << trial << ", lane " << j
                                                   << ", entry " << k;
+        }
+    }
+}
+
+// The batched damped kernel (one element per SIMD lane, the residual of a
+// damped beam's elements) must give every element's internalAndDampingForce
+// bit for bit (memcmp: the sign of zeros too), forces and power, for the
+// same cases as above, with lanes at very different sizes and rates, a lane
+// at rest (edot = 0) and lanes whose forces overwrite their state or rate.
+TEST(AncfElement, BatchedDampedForceIsBitIdentical)
+{
+  std::mt19937 rng(19);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  for (AxialIntegration axial : {AxialIntegration::Full, AxialIntegration::Reduced, AxialIntegration::Assumed})
+    for (double beamLength : {0.0, 100.0}) {
+      Section sec = kSteelBox;
+      sec.axialIntegration = axial;
+      sec.length = beamLength;
+      sec.etaA = 1e-3, sec.etaB = 2e-3;
+      for (double l : {0.25, 1e-3})
+        for (int trial = 0; trial < 50; ++trial) {
+          Vec8 e[kForceBatch], edot[kForceBatch], f[kForceBatch], fd[kForceBatch], expF[kForceBatch],
+              expFd[kForceBatch];
+          double power[kForceBatch], expPower[kForceBatch];
+          const double *ep[kForceBatch], *vp[kForceBatch];
+          double *fp[kForceBatch], *fdp[kForceBatch];
+          for (int j = 0; j < kForceBatch; ++j) {
+            e[j] = deformedState(rng, l, (trial + j) % 2 ? 0.2 : 1e-4 * (j + 1));
+            for (int k = 0; k < 8; ++k) edot[j][k] = j == 2 && trial % 5 == 0 ? 0.0 : u(rng) * std::exp(4 * u(rng));
+            expPower[j] = internalAndDampingForce(sec, l, e[j], edot[j], expF[j], expFd[j]);
+            ep[j] = e[j].data(), vp[j] = edot[j].data(), fp[j] = f[j].data(), fdp[j] = fd[j].data();
+          }
+          if (trial == 0) fp[1] = e[1].data(), fdp[3] = edot[3].data(); // in place
+          internalAndDampingForceBatch(sec, l, ep, vp, fp, fdp, power);
+          for (int j = 0; j < kForceBatch; ++j) {
+            EXPECT_EQ(std::memcmp(&power[j], &expPower[j], sizeof(double)), 0)
+                << "axial " << static_cast<int>(axial) << ", L " << beamLength << ", l " << l << ", trial " << trial
+                << ", lane " << j << ": " << power[j] << " vs " << expPower[j];
+            EXPECT_EQ(std::memcmp(fp[j], expF[j].data(), 8 * sizeof(double)), 0)
+                << "force, axial " << static_cast<int>(axial) << ", trial " << trial << ", lane " << j;
+            EXPECT_EQ(std::memcmp(fdp[j], expFd[j].data(), 8 * sizeof(double)), 0)
+                << "damping force, axial " << static_cast<int>(axial) << ", trial " << trial << ", lane " << j;
+          }
         }
     }
 }

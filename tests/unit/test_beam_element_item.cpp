@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cstring>
 #include <memory>
 #include <random>
 #include <vector>
@@ -56,8 +57,11 @@ TEST(BeamElementItem, KroneckerMassProductIsBitIdentical)
 
 // Residuals of a beam's elements in one batch (evaluateResiduals, one
 // kernel call for four elements; the assembler's residual path) must be
-// evaluate()'s residuals bit for bit; damped elements are not batched (no
-// key) and any count other than the kernel's width falls back to evaluate().
+// evaluate()'s residuals bit for bit (memcmp), undamped and damped; a damped
+// batch must also leave each item the damping force and power that
+// evaluate() keeps (the energy diagnostics and the energy check read them:
+// dampingForce, energy's dissipation). Any count other than the kernel's
+// width falls back to evaluate().
 TEST(BeamElementItem, BatchedResidualsAreBitIdentical)
 {
   std::mt19937 rng(17);
@@ -76,7 +80,11 @@ TEST(BeamElementItem, BatchedResidualsAreBitIdentical)
         owned.push_back(std::make_unique<BeamElementItem>(beam, 1 + j, mass, Vec2(0.0, -9.81)));
         items[j] = owned.back().get();
       }
-      EXPECT_EQ(items[0]->residualBatchKey() != nullptr, !damped);
+      // Items evaluated one at a time, for the expected memo.
+      std::vector<std::unique_ptr<BeamElementItem>> single;
+      for (int j = 0; j < kResidualBatch; ++j)
+        single.push_back(std::make_unique<BeamElementItem>(beam, 1 + j, mass, Vec2(0.0, -9.81)));
+      EXPECT_NE(items[0]->residualBatchKey(), nullptr);
       EXPECT_EQ(items[0]->residualBatchKey(), items[3]->residualBatchKey());
       for (int count : {kResidualBatch, 3})
         for (int trial = 0; trial < 50; ++trial) {
@@ -95,13 +103,29 @@ TEST(BeamElementItem, BatchedResidualsAreBitIdentical)
             }
             in[j].q = q[j].data(), in[j].v = v[j].data(), in[j].a = a[j].data();
             rp[j] = r[j];
-            items[j]->evaluate(ctx, in[j], expected[j], nullptr);
+            single[j]->evaluate(ctx, in[j], expected[j], nullptr);
           }
           items[0]->evaluateResiduals(ctx, items, in, rp, count);
-          for (int j = 0; j < count; ++j)
+          for (int j = 0; j < count; ++j) {
             for (int k = 0; k < 8; ++k)
-              EXPECT_EQ(r[j][k], expected[j][k]) << (damped ? "damped" : "undamped") << ", l " << l << ", count "
-                                                 << count << ", trial " << trial << ", item " << j << ", entry " << k;
+              EXPECT_EQ(std::memcmp(&r[j][k], &expected[j][k], sizeof(double)), 0)
+                  << (damped ? "damped" : "undamped") << ", l " << l << ", count " << count << ", trial " << trial
+                  << ", item " << j << ", entry " << k << ": " << r[j][k] << " vs " << expected[j][k];
+            if (!damped) continue;
+            // The memo: kept at this state by both, and read back bit for bit.
+            const auto *batched = static_cast<const BeamElementItem *>(items[j]);
+            EXPECT_TRUE(batched->dampingKeptAt(in[j])) << "count " << count << ", item " << j;
+            EXPECT_TRUE(single[j]->dampingKeptAt(in[j]));
+            double fd[8], fdExpected[8];
+            ASSERT_TRUE(batched->dampingForce(in[j], fd));
+            ASSERT_TRUE(single[j]->dampingForce(in[j], fdExpected));
+            EXPECT_EQ(std::memcmp(fd, fdExpected, sizeof fd), 0) << "count " << count << ", item " << j;
+            EnergyParts e, eExpected;
+            batched->energy(ctx, in[j], e);
+            single[j]->energy(ctx, in[j], eExpected);
+            EXPECT_EQ(std::memcmp(&e.dissipation, &eExpected.dissipation, sizeof(double)), 0)
+                << "power, count " << count << ", item " << j;
+          }
         }
     }
 }
