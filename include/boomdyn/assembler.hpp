@@ -115,6 +115,7 @@ private:
   std::vector<PetscInt> cooI_, cooJ_;
   std::vector<PetscScalar> cooV_;
   std::vector<double> qc_, vc_, ac_;  // local offsets
+  bool offsetZero_[3] = {true, true, true}; // qc_, vc_, ac_ known to be all zero (setOffsets)
   std::vector<char> firstOrder_;      // local entries that are first-order states
   bool inPlace_ = false;              // local vector = this rank's part of x, same order (no scatter)
   Vec localSource_ = nullptr;         // between beginLocal and endLocal: x or xLocal_

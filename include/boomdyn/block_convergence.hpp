@@ -41,6 +41,10 @@ public:
   // increment dx (unused at it = 0) and the residual F.
   PetscErrorCode test(PetscInt it, Vec x, Vec dx, Vec F, PetscReal rtol, PetscReal stol, PetscReal atol,
                       SNESConvergedReason *reason);
+  // The Newton update x -= dx on the owned entries (x + (-1) dx, as
+  // VecAXPY), with the sums over x^2 and dx^2 that the next test() needs
+  // taken in the same pass (that test then reads only F).
+  PetscErrorCode step(Vec x, Vec dx);
   // The block that kept the last unconverged iteration going (for -info).
   int lastHolder() const { return lastHolder_; }
   // Whether the last increment of every block was below the round-off of
@@ -48,6 +52,10 @@ public:
   bool incrementAtRoundoff() const { return incrementAtRoundoff_; }
   // That round-off of the increments (100 eps |q|) at the last test.
   double incrementRoundoff() const { return roundoff_; }
+  // 2-norms of F, x and dx at the last test (dx: 0 at iteration 0).
+  double fnorm() const { return fnorm_; }
+  double xnorm() const { return xnorm_; }
+  double snorm() const { return snorm_; }
 
 private:
   MPI_Comm comm_ = MPI_COMM_NULL;
@@ -66,6 +74,9 @@ private:
   int lastHolder_ = -1;
   bool incrementAtRoundoff_ = false;
   double roundoff_ = 0;
+  double fnorm_ = 0, xnorm_ = 0, snorm_ = 0;
+  std::array<double, 2 * NumBlocks> stepSums_{}; // x^2, dx^2 per block from step()
+  bool haveStepSums_ = false;
 };
 
 } // namespace boomdyn

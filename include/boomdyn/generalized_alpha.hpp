@@ -113,8 +113,10 @@ private:
   void setAccelerationLevelContext(bool velocityLevel);
   template <class Op>
   PetscErrorCode forFirstOrder(Op op);
-  template <class Op>
-  PetscErrorCode forFirstOrderState(Op op);
+  // One-pass predictor and corrector of advance() (see there).
+  PetscErrorCode predict(double h, double betaP, double gammaP, double sigma);
+  PetscErrorCode estimateAndUpdate(double h, double betaP, double gammaP, double sigma, bool update, double *largest);
+  std::vector<double> firstOrderQ_; // q_n of the owned first-order states (estimateAndUpdate)
 
   Assembler &assembler_;
   AlphaParameters params_;

@@ -78,6 +78,9 @@ public:
   // velocity projection removes the finite forces this way).
   Vec residualShift = nullptr;
   SNES snes() const { return snes_; }
+  // The 2-norm of the last residual (SNESGetFunctionNorm unless the block
+  // test's own norms replace the line search's, see setUp()).
+  PetscErrorCode lastFunctionNorm(PetscReal *fnorm) const;
   Mat jacobian() const { return J_; }
   const JacobianReuse &reuse() const { return reuse_; }
   const NewtonStatistics &statistics() const { return stats_; }
@@ -87,6 +90,7 @@ private:
   static PetscErrorCode formJacobian(SNES, Vec x, Mat J, Mat P, void *self);
   static PetscErrorCode convergenceTest(SNES, PetscInt it, PetscReal xnorm, PetscReal snorm, PetscReal fnorm,
                                         SNESConvergedReason *reason, void *self);
+  static PetscErrorCode fullStep(SNESLineSearch ls, void *self);
   PetscErrorCode solveOnce(Vec x, PetscInt *iterations, SNESConvergedReason *reason);
   static PetscErrorCode factor(SNES snes, Mat J);
   bool sameIterationMatrix(const AssemblyContext &a, const AssemblyContext &b) const;
@@ -114,6 +118,7 @@ private:
   RoundoffFloor floor_;
   bool floorProbe_ = false; // the current iteration is such a Newton step
   bool blockTest_ = true;
+  bool ownNorms_ = false; // fullStep is the line search; the norms are the block test's
   BlockConvergence blocks_;
 };
 

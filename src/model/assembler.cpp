@@ -156,6 +156,7 @@ PetscErrorCode Assembler::buildPattern()
   // copies that can be skipped (x and F are read and written in place).
   inPlace_ = nloc == hi - lo && (nloc == 0 || (needed.front() == lo && needed.back() == hi - 1));
   qc_.assign(nloc, 0.0), vc_.assign(nloc, 0.0), ac_.assign(nloc, 0.0);
+  offsetZero_[0] = offsetZero_[1] = offsetZero_[2] = true;
   firstOrder_.assign(nloc, 0);
   for (PetscInt g : model_.firstOrderCoordinates()) {
     const auto it = localOf.find(g);
@@ -230,9 +231,13 @@ PetscErrorCode Assembler::setOffsets(Vec qc, Vec vc, Vec ac)
   Vec src[3] = {qc, vc, ac};
   for (int k = 0; k < 3; ++k) {
     if (!src[k]) {
-      std::fill(dst[k]->begin(), dst[k]->end(), 0.0);
+      // Zero offsets are filled once, not at every solve (the steps pass
+      // qc = 0 each time: a pass over a vector of the whole state).
+      if (!offsetZero_[k]) std::fill(dst[k]->begin(), dst[k]->end(), 0.0);
+      offsetZero_[k] = true;
       continue;
     }
+    offsetZero_[k] = false;
     const PetscScalar *arr;
     Vec local = inPlace_ ? src[k] : xLocal_.get();
     if (!inPlace_) {

@@ -1,5 +1,6 @@
 #include "boomdyn/generalized_alpha.hpp"
 
+#include "boomdyn/lanes.hpp"
 #include "boomdyn/log_events.hpp"
 
 #include <algorithm>
@@ -70,31 +71,6 @@ PetscErrorCode GeneralizedAlpha::forFirstOrder(Op op)
     if (g >= lo && g < hi) op(g - lo, q, vc, x);
   PetscCall(VecRestoreArray(x_, &x));
   PetscCall(VecRestoreArray(vc_, &vc));
-  PetscCall(VecRestoreArrayRead(q_, &q));
-  PetscFunctionReturn(0);
-}
-
-// Applies op(local index, q_n, x_{n+1}, v, a, qdd) to the owned first-order entries.
-template <class Op>
-PetscErrorCode GeneralizedAlpha::forFirstOrderState(Op op)
-{
-  PetscInt lo, hi;
-  const PetscScalar *q, *x;
-  PetscScalar *v, *a, *qdd;
-  PetscFunctionBeginUser;
-  if (assembler_.model().firstOrderCoordinates().empty()) PetscFunctionReturn(0);
-  PetscCall(VecGetOwnershipRange(q_, &lo, &hi));
-  PetscCall(VecGetArrayRead(q_, &q));
-  PetscCall(VecGetArrayRead(x_, &x));
-  PetscCall(VecGetArray(v_, &v));
-  PetscCall(VecGetArray(a_, &a));
-  PetscCall(VecGetArray(qdd_, &qdd));
-  for (PetscInt g : assembler_.model().firstOrderCoordinates())
-    if (g >= lo && g < hi) op(g - lo, q, x, v, a, qdd);
-  PetscCall(VecRestoreArray(qdd_, &qdd));
-  PetscCall(VecRestoreArray(a_, &a));
-  PetscCall(VecRestoreArray(v_, &v));
-  PetscCall(VecRestoreArrayRead(x_, &x));
   PetscCall(VecRestoreArrayRead(q_, &q));
   PetscFunctionReturn(0);
 }
@@ -200,7 +176,7 @@ PetscErrorCode GeneralizedAlpha::projectVelocities()
     PetscReal rtol, atol, stol, finalResidual;
     PetscInt maxIt, maxF;
     PetscCall(SNESGetTolerances(newton_.snes(), &atol, &rtol, &stol, &maxIt, &maxF));
-    PetscCall(SNESGetFunctionNorm(newton_.snes(), &finalResidual));
+    PetscCall(newton_.lastFunctionNorm(&finalResidual));
     if (std::isfinite(finalResidual) && finalResidual <= rtol * initialResidual) reason = SNES_CONVERGED_FNORM_RELATIVE;
   }
   if (reason <= 0)
@@ -251,6 +227,232 @@ PetscErrorCode GeneralizedAlpha::stepToBreakpoint(StepResult *result)
   PetscFunctionReturn(0);
 }
 
+namespace {
+
+struct PredictorCoefficients {
+  double h, cA, am, af, mBetaP, cV, mGammaP, halfH2;
+};
+
+// GeneralizedAlpha::predict's loop; the vectors do not overlap (restrict:
+// vectorized), the two branches taken outside the loop.
+template <bool AmOne, bool WithA>
+void predictEntries(PetscInt n, const PredictorCoefficients c, const double *__restrict q, const double *__restrict v,
+                    const double *__restrict a, const double *__restrict qdd, double *__restrict qp,
+                    double *__restrict ac, double *__restrict vc, double *__restrict x)
+{
+  for (PetscInt i = 0; i < n; ++i) {
+    const double qpi = c.h * v[i] + c.cA * a[i] + q[i];
+    qp[i] = qpi;
+    const double acPart = AmOne ? a[i] + c.af * qdd[i] + 0.0 * ac[i] : c.am * a[i] + c.af * qdd[i];
+    ac[i] = acPart + c.mBetaP * qpi;
+    vc[i] = c.cV * a[i] + c.mGammaP * qpi + v[i];
+    double xi = q[i] + c.h * v[i];
+    if (WithA) xi = xi + c.halfH2 * a[i];
+    x[i] = xi;
+  }
+}
+
+// The largest of m and |d| lane by lane, as std::max(m, std::abs(d)): |d|
+// only where it is larger (a NaN is passed over; a zero's sign does not
+// matter, the maxima start at +0 and take only larger values).
+inline lanes::Lanes4 absMax(lanes::Lanes4 m, lanes::Lanes4 d)
+{
+  const lanes::Lanes4 zero{};
+  const lanes::Lanes4 ad = d < zero ? -d : d;
+  return ad > m ? ad : m;
+}
+
+// GeneralizedAlpha::estimateAndUpdate's update of entries [begin, end),
+// with the estimate's maxima of the same entries first if Estimate (four
+// entries at a time: the maximum of a set does not depend on the order in
+// which it is taken).
+template <bool Estimate>
+void updateEntries(PetscInt begin, PetscInt end, double h, double h2b, double betaP, double gammaP,
+                   const double *__restrict x, const double *__restrict qp, const double *__restrict ac,
+                   const double *__restrict vc, double *__restrict a, double *__restrict q, double *__restrict v,
+                   double *__restrict qdd, double largest[3])
+{
+  using lanes::Lanes4;
+  const double s = 1.0 / h2b;
+  PetscInt i = begin;
+  Lanes4 m0{}, m1{}, m2{};
+  if (Estimate)
+    for (; i + 4 <= end; i += 4) {
+      const Lanes4 xi = lanes::load(x + i), qpi = lanes::load(qp + i), ai = lanes::load(a + i);
+      m0 = absMax(m0, (xi - qpi) / h2b - ai);
+      const Lanes4 fromVelocity = xi - lanes::load(q + i) - h * lanes::load(v + i);
+      m1 = absMax(m1, fromVelocity);
+      m2 = absMax(m2, fromVelocity - 0.5 * h * h * ai);
+      lanes::store(a + i, s * (xi - qpi));
+      lanes::store(qdd + i, lanes::load(ac + i) + betaP * xi);
+      lanes::store(v + i, lanes::load(vc + i) + gammaP * xi);
+      lanes::store(q + i, xi);
+    }
+  double l0 = 0, l1 = 0, l2 = 0;
+  for (; i < end; ++i) {
+    const double xi = x[i];
+    if (Estimate) {
+      l0 = std::max(l0, std::abs((xi - qp[i]) / h2b - a[i]));
+      const double fromVelocity = xi - q[i] - h * v[i];
+      l1 = std::max(l1, std::abs(fromVelocity));
+      l2 = std::max(l2, std::abs(fromVelocity - 0.5 * h * h * a[i]));
+    }
+    a[i] = s * (xi - qp[i]);
+    qdd[i] = ac[i] + betaP * xi;
+    v[i] = vc[i] + gammaP * xi;
+    q[i] = xi;
+  }
+  if (Estimate) {
+    for (int k = 0; k < lanes::kWidth; ++k) l0 = std::max(l0, m0[k]), l1 = std::max(l1, m1[k]), l2 = std::max(l2, m2[k]);
+    largest[0] = l0, largest[1] = l1, largest[2] = l2;
+  }
+}
+
+} // namespace
+
+// The step's predictor in one pass over the owned entries: qp, ac, vc and
+// the first iterate x, entry by entry the operations (and the order of
+// the sums) of the PETSc calls this replaced, so the same bits (PETSc's
+// VecAXPBYPCZ, VecWAXPY and VecAXPY each compute z = a x + b y + c z etc.
+// left to right; VecAXPBYPCZ with alpha = 1 adds gamma z even for gamma =
+// 0, which only differs in the sign of a zero, kept too). The eight
+// passes over vectors of the whole state (reading q, v, a, qdd up to
+// three times each) were memory-bound on the 10^5-element boom.
+PetscErrorCode GeneralizedAlpha::predict(double h, double betaP, double gammaP, double sigma)
+{
+  const AlphaParameters &p = params_;
+  PetscInt lo, n;
+  const PetscScalar *q, *v, *a, *qdd, *lambda;
+  PetscScalar *qp, *ac, *vc, *x;
+  PetscFunctionBeginUser;
+  PetscCall(VecGetOwnershipRange(x_, &lo, nullptr));
+  PetscCall(VecGetLocalSize(x_, &n));
+  PetscCall(VecGetArrayRead(q_, &q));
+  PetscCall(VecGetArrayRead(v_, &v));
+  PetscCall(VecGetArrayRead(a_, &a));
+  PetscCall(VecGetArrayRead(qdd_, &qdd));
+  PetscCall(VecGetArrayRead(lambda_, &lambda));
+  PetscCall(VecGetArray(qp_, &qp));
+  PetscCall(VecGetArray(ac_, &ac));
+  PetscCall(VecGetArray(vc_, &vc));
+  PetscCall(VecGetArray(x_, &x));
+  // qp = q + h v + h^2 (1/2 - beta) a: VecCopy(q, qp), VecAXPBYPCZ(qp, h, cA, 1, v, a).
+  const double cA = h * h * (0.5 - p.beta);
+  // ac = (alpha_m a - alpha_f qdd)/(1 - alpha_f) - beta' qp:
+  // VecAXPBYPCZ(ac, am, af, 0, a, qdd), VecAXPY(ac, -beta', qp).
+  const double am = p.alpha_m / (1.0 - p.alpha_f), af = -p.alpha_f / (1.0 - p.alpha_f), mBetaP = -betaP;
+  const bool amOne = am == 1.0; // VecAXPBYPCZ's alpha = 1 branch (rho_inf = 1)
+  // vc = v + h (1 - gamma) a - gamma' qp: VecCopy(v, vc), VecAXPBYPCZ(vc, cV, -gamma', 1, a, qp).
+  const double cV = h * (1.0 - p.gamma), mGammaP = -gammaP;
+  // x = q + h v (VecWAXPY(x, h, v, q)), + h^2/2 a (VecAXPY) with the acceleration predictor.
+  const double halfH2 = 0.5 * h * h;
+  const bool withA = predictWithAcceleration_;
+  const PredictorCoefficients c{h, cA, am, af, mBetaP, cV, mGammaP, halfH2};
+  if (amOne) {
+    if (withA) predictEntries<true, true>(n, c, q, v, a, qdd, qp, ac, vc, x);
+    else predictEntries<true, false>(n, c, q, v, a, qdd, qp, ac, vc, x);
+  } else {
+    if (withA) predictEntries<false, true>(n, c, q, v, a, qdd, qp, ac, vc, x);
+    else predictEntries<false, false>(n, c, q, v, a, qdd, qp, ac, vc, x);
+  }
+  // The multipliers' entries of x: the last step's, scaled (copyMultipliers(lambda, x, 1/sigma)).
+  const double scale = 1.0 / sigma;
+  for (PetscInt i = std::max<PetscInt>(0, assembler_.model().numCoordinates() - lo); i < n; ++i) x[i] = scale * lambda[i];
+  PetscCall(VecRestoreArray(x_, &x));
+  PetscCall(VecRestoreArray(vc_, &vc));
+  PetscCall(VecRestoreArray(ac_, &ac));
+  PetscCall(VecRestoreArray(qp_, &qp));
+  PetscCall(VecRestoreArrayRead(lambda_, &lambda));
+  PetscCall(VecRestoreArrayRead(qdd_, &qdd));
+  PetscCall(VecRestoreArrayRead(a_, &a));
+  PetscCall(VecRestoreArrayRead(v_, &v));
+  PetscCall(VecRestoreArrayRead(q_, &q));
+  PetscFunctionReturn(0);
+}
+
+// After a converged solve: the local error estimate's maxima (largest, on
+// this rank's coordinates, if not null) and, if update, the new state
+// a = (x - qp)/(h^2 beta), qdd = ac + beta' x, v = vc + gamma' x, q = x,
+// lambda = sigma x on the multipliers, first-order states by backward
+// Euler -- in one pass, each entry's estimate read before its update. The
+// same operations as the PETSc calls they replaced (VecWAXPY(a, -1, qp,
+// x), VecScale(a, 1/(h^2 beta)), VecWAXPY(qdd, beta', x, ac), VecWAXPY(v,
+// gamma', x, vc), VecCopy(x, q), copyMultipliers(x, lambda, sigma)).
+PetscErrorCode GeneralizedAlpha::estimateAndUpdate(double h, double betaP, double gammaP, double sigma, bool update,
+                                                   double *largest)
+{
+  const AlphaParameters &p = params_;
+  PetscInt begin, end, lo, hi;
+  const PetscScalar *x, *qp, *ac, *vc;
+  PetscScalar *a, *q, *v, *qdd = nullptr, *lambda = nullptr;
+  PetscFunctionBeginUser;
+  const double h2b = h * h * p.beta;
+  PetscCall(assembler_.coordinateRange(&begin, &end));
+  PetscCall(VecGetOwnershipRange(x_, &lo, &hi));
+  PetscCall(VecGetArrayRead(x_, &x));
+  PetscCall(VecGetArrayRead(qp_, &qp));
+  PetscCall(VecGetArrayRead(ac_, &ac));
+  PetscCall(VecGetArrayRead(vc_, &vc));
+  // Write access only when updating (the state's object state stays as it is otherwise).
+  if (update) {
+    PetscCall(VecGetArray(a_, &a));
+    PetscCall(VecGetArray(q_, &q));
+    PetscCall(VecGetArray(v_, &v));
+    PetscCall(VecGetArray(qdd_, &qdd));
+    PetscCall(VecGetArray(lambda_, &lambda));
+  } else {
+    PetscCall(VecGetArrayRead(a_, const_cast<const PetscScalar **>(&a)));
+    PetscCall(VecGetArrayRead(q_, const_cast<const PetscScalar **>(&q)));
+    PetscCall(VecGetArrayRead(v_, const_cast<const PetscScalar **>(&v)));
+  }
+  // First-order states' q_n, read before the pass overwrites q.
+  firstOrderQ_.clear();
+  if (update)
+    for (PetscInt g : assembler_.model().firstOrderCoordinates())
+      if (g >= lo && g < hi) firstOrderQ_.push_back(q[g - lo]);
+  const PetscInt n = hi - lo, cb = begin - lo, ce = std::max(begin, end) - lo;
+  if (update) {
+    updateEntries<false>(0, cb, h, h2b, betaP, gammaP, x, qp, ac, vc, a, q, v, qdd, nullptr);
+    if (largest) updateEntries<true>(cb, ce, h, h2b, betaP, gammaP, x, qp, ac, vc, a, q, v, qdd, largest);
+    else updateEntries<false>(cb, ce, h, h2b, betaP, gammaP, x, qp, ac, vc, a, q, v, qdd, nullptr);
+    updateEntries<false>(ce, n, h, h2b, betaP, gammaP, x, qp, ac, vc, a, q, v, qdd, nullptr);
+    for (PetscInt i = std::max<PetscInt>(0, assembler_.model().numCoordinates() - lo); i < n; ++i) lambda[i] = sigma * x[i];
+    // First-order states: rate from backward Euler; no accelerations.
+    std::size_t k = 0;
+    for (PetscInt g : assembler_.model().firstOrderCoordinates())
+      if (g >= lo && g < hi) {
+        const PetscInt i = g - lo;
+        v[i] = (x[i] - firstOrderQ_[k++]) / h;
+        a[i] = qdd[i] = 0.0;
+      }
+  } else if (largest) {
+    double l0 = 0, l1 = 0, l2 = 0;
+    for (PetscInt i = cb; i < ce; ++i) {
+      l0 = std::max(l0, std::abs((x[i] - qp[i]) / h2b - a[i]));
+      const double fromVelocity = x[i] - q[i] - h * v[i];
+      l1 = std::max(l1, std::abs(fromVelocity));
+      l2 = std::max(l2, std::abs(fromVelocity - 0.5 * h * h * a[i]));
+    }
+    largest[0] = l0, largest[1] = l1, largest[2] = l2;
+  }
+  if (update) {
+    PetscCall(VecRestoreArray(lambda_, &lambda));
+    PetscCall(VecRestoreArray(qdd_, &qdd));
+    PetscCall(VecRestoreArray(v_, &v));
+    PetscCall(VecRestoreArray(q_, &q));
+    PetscCall(VecRestoreArray(a_, &a));
+  } else {
+    PetscCall(VecRestoreArrayRead(v_, const_cast<const PetscScalar **>(&v)));
+    PetscCall(VecRestoreArrayRead(q_, const_cast<const PetscScalar **>(&q)));
+    PetscCall(VecRestoreArrayRead(a_, const_cast<const PetscScalar **>(&a)));
+  }
+  PetscCall(VecRestoreArrayRead(vc_, &vc));
+  PetscCall(VecRestoreArrayRead(ac_, &ac));
+  PetscCall(VecRestoreArrayRead(qp_, &qp));
+  PetscCall(VecRestoreArrayRead(x_, &x));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode GeneralizedAlpha::step(double h, StepResult *result) { return advance(h, t_ + h, result); }
 
 PetscErrorCode GeneralizedAlpha::advance(double h, double tEnd, StepResult *result)
@@ -269,15 +471,8 @@ PetscErrorCode GeneralizedAlpha::advance(double h, double tEnd, StepResult *resu
   bool relocated = false;
   for (int attempt = 0; attempt < 16; ++attempt) {
     // qp = q + h v + h^2 (1/2 - beta) a
-    PetscCall(VecCopy(q_, qp_));
-    PetscCall(VecAXPBYPCZ(qp_, h, h * h * (0.5 - p.beta), 1.0, v_, a_));
     // qdd(x) = ac + beta' x with ac = -beta' qp + (alpha_m a - alpha_f qdd)/(1 - alpha_f)
-    PetscCall(VecAXPBYPCZ(ac_, p.alpha_m / (1.0 - p.alpha_f), -p.alpha_f / (1.0 - p.alpha_f), 0.0, a_, qdd_));
-    PetscCall(VecAXPY(ac_, -betaP, qp_));
     // v(x) = vc + gamma' x with vc = v + h (1 - gamma) a - gamma' qp
-    PetscCall(VecCopy(v_, vc_));
-    PetscCall(VecAXPBYPCZ(vc_, h * (1.0 - p.gamma), -gammaP, 1.0, a_, qp_));
-
     // Predictor q_{n+1} = q_n + h v_n, or q_n + h v_n + h^2/2 a_n (a_{n+1}
     // = a_n in the update formula) when that predicted the previous step's
     // solution better. Always extrapolating accelerations carries the large
@@ -287,9 +482,7 @@ PetscErrorCode GeneralizedAlpha::advance(double h, double tEnd, StepResult *resu
     // initial accelerations); in smooth motion it saves about one Newton
     // iteration in six (paper extraction: 29 907 residuals instead of
     // 34 928, docs/performance.md).
-    PetscCall(VecWAXPY(x_, h, v_, q_));
-    if (predictWithAcceleration_) PetscCall(VecAXPY(x_, 0.5 * h * h, a_));
-    PetscCall(assembler_.copyMultipliers(lambda_, x_, 1.0 / sigma));
+    PetscCall(predict(h, betaP, gammaP, sigma));
     // First-order states (LuGre z): backward Euler, zdot = (z - z_n)/h, from z_n.
     PetscCall(forFirstOrder([&](PetscInt i, const PetscScalar *q, PetscScalar *vc, PetscScalar *x) {
       vc[i] = -q[i] / h;
@@ -328,55 +521,23 @@ PetscErrorCode GeneralizedAlpha::advance(double h, double tEnd, StepResult *resu
     // Local error estimate from the change of the acceleration-like variable
     // over the step, on this rank's coordinates (not the multipliers).
     // With it, the largest distance of the solution from each predictor.
-    PetscInt begin, end, lo;
-    const PetscScalar *x, *qp, *a, *q, *v;
-    PetscCall(assembler_.coordinateRange(&begin, &end));
-    PetscCall(VecGetOwnershipRange(x_, &lo, nullptr));
-    PetscCall(VecGetArrayRead(x_, &x));
-    PetscCall(VecGetArrayRead(qp_, &qp));
-    PetscCall(VecGetArrayRead(a_, &a));
-    PetscCall(VecGetArrayRead(q_, &q));
-    PetscCall(VecGetArrayRead(v_, &v));
+    // Without an error tolerance the step is accepted whatever the estimate,
+    // and the update of the state rides on the same pass.
+    const bool mayReject = errorTolerance_ > 0;
     enum { Change, VelocityPredictor, AccelerationPredictor };
     double largest[3] = {0, 0, 0};
-    for (PetscInt g = begin; g < end; ++g) {
-      const PetscInt i = g - lo;
-      largest[Change] = std::max(largest[Change], std::abs((x[i] - qp[i]) / h2b - a[i]));
-      const double fromVelocity = x[i] - q[i] - h * v[i];
-      largest[VelocityPredictor] = std::max(largest[VelocityPredictor], std::abs(fromVelocity));
-      largest[AccelerationPredictor] =
-        std::max(largest[AccelerationPredictor], std::abs(fromVelocity - 0.5 * h * h * a[i]));
-    }
-    PetscCall(VecRestoreArrayRead(v_, &v));
-    PetscCall(VecRestoreArrayRead(q_, &q));
-    PetscCall(VecRestoreArrayRead(a_, &a));
-    PetscCall(VecRestoreArrayRead(qp_, &qp));
-    PetscCall(VecRestoreArrayRead(x_, &x));
+    PetscCall(estimateAndUpdate(h, betaP, gammaP, sigma, !mayReject, largest));
     PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, largest, 3, MPI_DOUBLE, MPI_MAX, assembler_.comm()));
     result->errorEstimate = h * h * std::abs(p.beta - 1.0 / 6.0) * largest[Change];
     predictWithAcceleration_ =
       accelerationPredictor_ && largest[AccelerationPredictor] < largest[VelocityPredictor];
-    if (errorTolerance_ > 0 && result->errorEstimate > errorTolerance_) {
+    if (mayReject && result->errorEstimate > errorTolerance_) {
       result->converged = false;
       result->errorRejected = true;
     }
+    if (result->converged && mayReject) PetscCall(estimateAndUpdate(h, betaP, gammaP, sigma, true, nullptr));
   }
-  if (result->converged) {
-    // a_{n+1} = (q_{n+1} - qp)/(h^2 beta); qdd, v from the affine maps.
-    PetscCall(VecWAXPY(a_, -1.0, qp_, x_));
-    PetscCall(VecScale(a_, 1.0 / h2b));
-    PetscCall(VecWAXPY(qdd_, betaP, x_, ac_));
-    PetscCall(VecWAXPY(v_, gammaP, x_, vc_));
-    // First-order states: rate from backward Euler; no accelerations.
-    PetscCall(forFirstOrderState([&](PetscInt i, const PetscScalar *qn, const PetscScalar *x, PetscScalar *v, PetscScalar *a,
-                                     PetscScalar *qdd) {
-      v[i] = (x[i] - qn[i]) / h;
-      a[i] = qdd[i] = 0.0;
-    }));
-    PetscCall(VecCopy(x_, q_));
-    PetscCall(assembler_.copyMultipliers(x_, lambda_, sigma));
-    t_ = tEnd;
-  }
+  if (result->converged) t_ = tEnd;
   PetscCall(PetscLogEventEnd(logEvents().step, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }

@@ -3,6 +3,9 @@
 #include "boomdyn/direct_solver.hpp"
 #include "boomdyn/schur_complement_solver.hpp"
 
+// The SNES monitors, to know whether anything prints the line search norms (setUp).
+#include <petsc/private/snesimpl.h>
+
 #include <cmath>
 #include <limits>
 
@@ -56,7 +59,56 @@ PetscErrorCode NewtonSolver::setUp(Assembler &assembler, const char *prefix, Pet
   blockTest_ = blockTest;
   if (blockTest_) PetscCall(blocks_.setUp(assembler.model(), F_));
   if (reuse_.enabled || blockTest_) PetscCall(SNESSetConvergenceTest(snes_, convergenceTest, this, nullptr));
+  // The block test judges the iterate by its own sums over x, dx and F
+  // (block_convergence.cpp), which give the 2-norms as well. With it the
+  // full step is a line search of our own (fullStep): x -= dx in place and
+  // the residual, without the basic line search's three norms (passes over
+  // F, dx and x that the test then repeats) and its copy of the new iterate
+  // from a work vector. The same x and F bit for bit. Only while nothing
+  // else reads the line search's norms: -snes_linesearch_type, or an SNES
+  // monitor (which prints them), keeps PETSc's line search.
+  if (blockTest_) {
+    PetscCall(SNESLineSearchSetType(ls, SNESLINESEARCHSHELL));
+    PetscCall(SNESLineSearchShellSetUserFunc(ls, fullStep, this));
+  }
   PetscCall(SNESSetFromOptions(snes_));
+  PetscBool shell = PETSC_FALSE;
+  PetscCall(PetscObjectTypeCompare((PetscObject)ls, SNESLINESEARCHSHELL, &shell));
+  ownNorms_ = blockTest_ && shell && snes_.get()->numbermonitors == 0;
+  if (blockTest_ && shell && !ownNorms_) {
+    PetscCall(SNESLineSearchSetType(ls, SNESLINESEARCHBASIC));
+    PetscCall(SNESLineSearchSetComputeNorms(ls, PETSC_TRUE));
+  }
+  PetscFunctionReturn(0);
+}
+
+// The line search with the block test (setUp): the full Newton step, as
+// SNESLINESEARCHBASIC at damping 1 takes it (there W = X - Y, F(W), X = W;
+// here X - Y in place, the same numbers), without norms: convergenceTest
+// takes them from the block test's sums, of which the update takes those
+// over X and Y in its pass.
+PetscErrorCode NewtonSolver::fullStep(SNESLineSearch ls, void *self)
+{
+  auto *me = static_cast<NewtonSolver *>(self);
+  SNES snes;
+  Vec X, F, Y;
+  PetscBool domainError;
+  PetscFunctionBeginUser;
+  PetscCall(SNESLineSearchGetVecs(ls, &X, &F, &Y, nullptr, nullptr));
+  PetscCall(SNESLineSearchGetSNES(ls, &snes));
+  PetscCall(SNESLineSearchSetReason(ls, SNES_LINESEARCH_SUCCEEDED));
+  PetscCall(me->blocks_.step(X, Y)); // X -= Y, with the block test's sums over X and Y
+  PetscCall(SNESComputeFunction(snes, X, F));
+  PetscCall(SNESGetFunctionDomainError(snes, &domainError));
+  if (domainError) PetscCall(SNESLineSearchSetReason(ls, SNES_LINESEARCH_FAILED_DOMAIN));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode NewtonSolver::lastFunctionNorm(PetscReal *fnorm) const
+{
+  PetscFunctionBeginUser;
+  if (ownNorms_) *fnorm = blocks_.fnorm();
+  else PetscCall(SNESGetFunctionNorm(snes_, fnorm));
   PetscFunctionReturn(0);
 }
 
@@ -183,6 +235,10 @@ PetscErrorCode NewtonSolver::convergenceTest(SNES snes, PetscInt it, PetscReal x
     PetscCall(SNESGetFunction(snes, &F, nullptr, nullptr));
     PetscCall(SNESGetTolerances(snes, &atol, &rtol, &stol, &maxIt, &maxF));
     PetscCall(me->blocks_.test(it, x, dx, F, rtol, stol, atol, reason));
+    // Without PETSc's line search norms (fullStep): the block test's. Their
+    // sums run in another order than BLAS's, so they may differ from
+    // VecNorm's in the last bits; they only enter the comparisons below.
+    if (me->ownNorms_) fnorm = me->blocks_.fnorm(), xnorm = me->blocks_.xnorm(), snorm = me->blocks_.snorm();
   } else PetscCall(SNESConvergedDefault(snes, it, xnorm, snorm, fnorm, reason, nullptr));
   // Full Newton, or the retry of a failed reuse: a fresh matrix at every iterate already.
   if (!me->reuse_.enabled || me->fullNewton_) PetscFunctionReturn(0);
