@@ -376,6 +376,39 @@ double strainEnergy(const Section &sec, double l, const Vec8 &e)
 
 namespace {
 
+// The elastic force of one quadrature point (weight wx = w l), added to fl:
+// N = EA eps + EAproj (alpha_0 + alpha_1 phi_1) (the projection's term +0
+// without it), f += s1 (wx (N r' + b n(r''))) - s2 (wx b n(r')), with
+// b = EI K / |r'|^2 and n the rotation by -90 degrees. Shared by the
+// force-only and the force-and-damping kernels, so that both do the same
+// operations in the same order (their forces are bit for bit equal: tests
+// AncfElement.ForceOnlyPathIsBitIdentical, InternalAndDampingForceIsBitIdentical).
+// K and 1/|r'|^2 go out for the damping force. S: double or the lanes.
+template <typename T, typename S>
+inline void addElasticForceAt(double wx, double EA, double EI, double EAproj, bool projected, const T &alpha0,
+                              const T &alpha1, double legendre1, const T &r1x, const T &r1y, const T &r2x,
+                              const T &r2y, const S *s1, const S *s2, T fl[8], T *curvature, T *inverseJ2)
+{
+  const T J2 = r1x * r1x + r1y * r1y, iJ2 = 1.0 / J2;
+  const T eps = 0.5 * (J2 - 1.0);
+  const T K = (r1x * r2y - r1y * r2x) * iJ2;
+  // proj.strain(q.xi): alpha_0 phi_0 + alpha_1 phi_1, summed from zero.
+  T strain{};
+  strain += alpha0 * 1.0;
+  strain += alpha1 * legendre1;
+  T axial{}; // EAproj * strain, or +0 without the projection
+  if (projected) axial = EAproj * strain;
+  const T N = EA * eps + axial;
+  const T a = N - 2.0 * EI * K * K * iJ2, b = EI * K * iJ2;
+  const T v1x = wx * (a * r1x + b * r2y), v1y = wx * (a * r1y + b * -r2x);
+  const T wb = wx * b, v2x = wb * r1y, v2y = wb * -r1x;
+  for (int k = 0; k < 4; ++k) {
+    fl[2 * k] += s1[k] * v1x - s2[k] * v2x;
+    fl[2 * k + 1] += s1[k] * v1y - s2[k] * v2y;
+  }
+  *curvature = K, *inverseJ2 = iJ2;
+}
+
 // internalForce without the tangent (every residual evaluation): the
 // operations of the general path below, in the same order, on scalars, so
 // the force is bit-identical to it (test AncfElement.ForceOnlyPathIsBitIdentical).
@@ -424,24 +457,9 @@ void internalForceOnlyN(const Section &sec, double l, const QuadRule &g, const S
     const double EA = q.axial * gamma * sec.EA, EI = q.bending * sec.EI;
     const auto *s1 = shapeOperands(shapes.s1, shapes.s1Lanes, p, static_cast<T *>(nullptr));
     const auto *s2 = shapeOperands(shapes.s2, shapes.s2Lanes, p, static_cast<T *>(nullptr));
-    const double wx = q.w * l;
-    const T J2 = r1x[p] * r1x[p] + r1y[p] * r1y[p], iJ2 = 1.0 / J2;
-    const T eps = 0.5 * (J2 - 1.0);
-    const T K = (r1x[p] * r2y[p] - r1y[p] * r2x[p]) * iJ2;
-    // proj.strain(q.xi): alpha_0 phi_0 + alpha_1 phi_1, summed from zero.
-    T strain{};
-    strain += alpha0 * 1.0;
-    strain += alpha1 * shapes.legendre1[p];
-    T axial{}; // EAproj * strain, or +0 without the projection
-    if (projected) axial = EAproj * strain;
-    const T N = EA * eps + axial;
-    const T a = N - 2.0 * EI * K * K * iJ2, b = EI * K * iJ2;
-    const T v1x = wx * (a * r1x[p] + b * r2y[p]), v1y = wx * (a * r1y[p] + b * -r2x[p]);
-    const T wb = wx * b, v2x = wb * r1y[p], v2y = wb * -r1x[p];
-    for (int k = 0; k < 4; ++k) {
-      fl[2 * k] += s1[k] * v1x - s2[k] * v2x;
-      fl[2 * k + 1] += s1[k] * v1y - s2[k] * v2y;
-    }
+    T K, iJ2;
+    addElasticForceAt(q.w * l, EA, EI, EAproj, projected, alpha0, alpha1, shapes.legendre1[p], r1x[p], r1y[p],
+                      r2x[p], r2y[p], s1, s2, fl, &K, &iJ2);
   }
   for (int i = 0; i < 8; ++i) f[i] = fl[i];
 }
@@ -790,24 +808,11 @@ T internalAndDampingForceN(const Section &sec, double l, const QuadRule &g, cons
     const auto *s1 = shapeOperands(shapes.s1, shapes.s1Lanes, p, static_cast<T *>(nullptr));
     const auto *s2 = shapeOperands(shapes.s2, shapes.s2Lanes, p, static_cast<T *>(nullptr));
     const double wx = q.w * l;
-    const T J2 = r1x[p] * r1x[p] + r1y[p] * r1y[p], iJ2 = 1.0 / J2;
-    const T K = (r1x[p] * r2y[p] - r1y[p] * r2x[p]) * iJ2;
     // Internal force (internalForceOnlyN's operations).
     const double EA = q.axial * gamma * sec.EA, EI = q.bending * sec.EI;
-    const T eps = 0.5 * (J2 - 1.0);
-    T strain{};
-    strain += alpha[0] * 1.0;
-    strain += alpha[1] * shapes.legendre1[p];
-    T axial{}; // EAproj * strain, or +0 without the projection
-    if (projected) axial = EAproj * strain;
-    const T N = EA * eps + axial;
-    const T a = N - 2.0 * EI * K * K * iJ2, b = EI * K * iJ2;
-    const T v1x = wx * (a * r1x[p] + b * r2y[p]), v1y = wx * (a * r1y[p] + b * -r2x[p]);
-    const T wb = wx * b, v2x = wb * r1y[p], v2y = wb * -r1x[p];
-    for (int k = 0; k < 4; ++k) {
-      fl[2 * k] += s1[k] * v1x - s2[k] * v2x;
-      fl[2 * k + 1] += s1[k] * v1y - s2[k] * v2y;
-    }
+    T K, iJ2;
+    addElasticForceAt(wx, EA, EI, EAproj, projected, alpha[0], alpha[1], shapes.legendre1[p], r1x[p], r1y[p], r2x[p],
+                      r2y[p], s1, s2, fl, &K, &iJ2);
     // Damping force (dampingForceImpl's force-only branch).
     const double ca = wx * gamma * sec.EA * sec.etaA * q.axial, cb = wx * sec.EI * sec.etaB * q.bending;
     const T epsdot = r1x[p] * d1x[p] + r1y[p] * d1y[p];
