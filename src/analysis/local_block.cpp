@@ -93,7 +93,7 @@ PetscErrorCode LocalBlocks::inner(const Eigen::Ref<const Eigen::MatrixXd> &A,
                                   const Eigen::Ref<const Eigen::MatrixXd> &B, Eigen::MatrixXd *G) const
 {
   PetscFunctionBeginUser;
-  if (B.cols() == 1 || A.rows() != B.rows()) G->noalias() = A.transpose() * B;
+  if (B.cols() == 1) G->noalias() = A.transpose() * B; // Eigen's gemv, as fast
   else {
     G->resize(A.cols(), B.cols());
     columnDots(A, B, *G, false);
@@ -245,29 +245,44 @@ void LocalBlocks::combine(const Eigen::Ref<const Eigen::MatrixXd> &X, const Eige
   }
 }
 
-PetscErrorCode LocalBlocks::solve(KSP ksp, const double *b, double *x, bool *ok)
+namespace {
+
+// The factor of a shift-and-invert solver that is a factorization applied
+// once (useDirectSolver: preonly + LU), or nullptr for anything else set
+// from the options (which goes through KSPSolve); *ok false when that
+// factorization failed.
+PetscErrorCode directFactor(KSP ksp, Mat *factor, bool *ok)
 {
-  KSPConvergedReason reason;
   PC pc;
   PetscBool preonly, lu;
   PetscFunctionBeginUser;
-  PetscCall(VecPlaceArray(x_, const_cast<double *>(b)));
-  PetscCall(VecPlaceArray(y_, x));
-  // The shift-and-invert solvers are a factorization applied once
-  // (useDirectSolver): the triangular solves directly, without KSPSolve's
-  // overhead (a third of a solve at 221 unknowns). Anything else set from
-  // the options goes through KSPSolve.
+  *factor = nullptr;
+  *ok = true;
   PetscCall(KSPGetPC(ksp, &pc));
   PetscCall(PetscObjectTypeCompare((PetscObject)ksp, KSPPREONLY, &preonly));
   PetscCall(PetscObjectTypeCompare((PetscObject)pc, PCLU, &lu));
-  if (preonly && lu) {
-    Mat factor;
-    PCFailedReason failed;
-    PetscCall(PCGetFailedReason(pc, &failed));
-    *ok = failed == PC_NOERROR;
-    PetscCall(PCFactorGetMatrix(pc, &factor));
-    if (*ok) PetscCall(MatSolve(factor, x_, y_));
-  } else {
+  if (!preonly || !lu) PetscFunctionReturn(0);
+  PCFailedReason failed;
+  PetscCall(PCGetFailedReason(pc, &failed));
+  *ok = failed == PC_NOERROR;
+  if (*ok) PetscCall(PCFactorGetMatrix(pc, factor));
+  PetscFunctionReturn(0);
+}
+
+} // namespace
+
+PetscErrorCode LocalBlocks::solve(KSP ksp, const double *b, double *x, bool *ok)
+{
+  Mat factor;
+  PetscFunctionBeginUser;
+  PetscCall(VecPlaceArray(x_, const_cast<double *>(b)));
+  PetscCall(VecPlaceArray(y_, x));
+  // The factorization's triangular solves directly, without KSPSolve's
+  // overhead (a third of a solve at 221 unknowns).
+  PetscCall(directFactor(ksp, &factor, ok));
+  if (factor) PetscCall(MatSolve(factor, x_, y_));
+  else if (*ok) {
+    KSPConvergedReason reason;
     PetscCall(KSPSolve(ksp, x_, y_));
     PetscCall(KSPGetConvergedReason(ksp, &reason));
     *ok = reason >= 0;
@@ -280,21 +295,14 @@ PetscErrorCode LocalBlocks::solve(KSP ksp, const double *b, double *x, bool *ok)
 PetscErrorCode LocalBlocks::solveColumns(KSP ksp, const Eigen::Ref<const Eigen::MatrixXd> &B,
                                          Eigen::Ref<Eigen::MatrixXd> X, bool *ok)
 {
-  PC pc;
-  PetscBool preonly, lu, done = PETSC_FALSE;
+  Mat factor = nullptr;
+  PetscBool done = PETSC_FALSE;
   PetscFunctionBeginUser;
   *ok = true;
   if (X.cols() == 0) PetscFunctionReturn(0);
-  PetscCall(KSPGetPC(ksp, &pc));
-  PetscCall(PetscObjectTypeCompare((PetscObject)ksp, KSPPREONLY, &preonly));
-  PetscCall(PetscObjectTypeCompare((PetscObject)pc, PCLU, &lu));
-  if (preonly && lu) {
-    Mat factor;
-    PCFailedReason failed;
-    PetscCall(PCGetFailedReason(pc, &failed));
-    *ok = failed == PC_NOERROR;
-    if (!*ok) PetscFunctionReturn(0);
-    PetscCall(PCFactorGetMatrix(pc, &factor));
+  PetscCall(directFactor(ksp, &factor, ok));
+  if (!*ok) PetscFunctionReturn(0);
+  if (factor) {
     X = B;
     PetscCall(kluSolveColumns(factor, X.cols(), X.outerStride(), X.data(), &done));
   }
