@@ -8,14 +8,6 @@
 
 #include <type_traits>
 
-// KLU's triangular solves within one diagonal block of the transposed
-// factors (exported by libklu, declared in its internal header only; real
-// entries, int indices: the klu_ variant). transposedSolve() below.
-extern "C" {
-void klu_utsolve(int n, int Uip[], int Ulen[], double LU[], double Udiag[], int nrhs, double X[]);
-void klu_ltsolve(int n, int Lip[], int Llen[], double LU[], int nrhs, double X[]);
-}
-
 namespace boomdyn {
 
 namespace {
@@ -83,51 +75,11 @@ PetscErrorCode solveInPlace(Mat F, PetscInt columns, PetscInt ld, double *x, boo
   PetscFunctionReturn(0);
 }
 
-// A x = b for one column, b read and x written directly: klu_tsolve's own
-// steps for one right-hand side without scaling (X = Q'b, the blocks in
-// order with their off-diagonal entries, U' then L' within a block, x = P'X,
-// the same operations in the same order, so the same bits), without the
-// copy of b into x that its in-place interface needs (a pass over two
-// vectors of the whole system per Newton iteration).
-void transposedSolve(const KluFactor &lu, const double *b, double *x)
-{
-  const klu_symbolic &S = *lu.symbolic;
-  const klu_numeric &N = *lu.numeric;
-  const int n = S.n, *Q = S.Q, *R = S.R, *Pnum = N.Pnum, *Offp = N.Offp, *Offi = N.Offi;
-  const double *Offx = static_cast<const double *>(N.Offx);
-  double *Udiag = static_cast<double *>(N.Udiag), *X = static_cast<double *>(N.Xwork);
-  for (int k = 0; k < n; ++k) X[k] = b[Q[k]];
-  for (int block = 0; block < S.nblocks; ++block) {
-    const int k1 = R[block], k2 = R[block + 1], nk = k2 - k1;
-    if (block > 0)
-      for (int k = k1; k < k2; ++k)
-        for (int p = Offp[k]; p < Offp[k + 1]; ++p) X[k] -= Offx[p] * X[Offi[p]];
-    if (nk == 1) X[k1] = X[k1] / Udiag[k1];
-    else {
-      double *LU = static_cast<double *>(N.LUbx[block]);
-      klu_utsolve(nk, N.Uip + k1, N.Ulen + k1, LU, Udiag + k1, 1, X + k1);
-      klu_ltsolve(nk, N.Lip + k1, N.Llen + k1, LU, 1, X + k1);
-    }
-  }
-  for (int k = 0; k < n; ++k) x[Pnum[k]] = X[k];
-}
-
 PetscErrorCode solveVec(Mat F, Vec b, Vec x, bool transposed)
 {
   PetscScalar *xa;
   PetscInt n;
   PetscFunctionBeginUser;
-  const KluFactor *lu = data(F);
-  if (!transposed && !lu->numeric->Rs) {
-    const PetscScalar *ba;
-    PetscCall(VecGetArrayRead(b, &ba));
-    PetscCall(VecGetArrayWrite(x, &xa));
-    transposedSolve(*lu, ba, xa);
-    PetscCall(VecRestoreArrayWrite(x, &xa));
-    PetscCall(VecRestoreArrayRead(b, &ba));
-    PetscCall(PetscLogFlops(2.0 * (lu->numeric->lnz + lu->numeric->unz)));
-    PetscFunctionReturn(0);
-  }
   PetscCall(VecCopy(b, x));
   PetscCall(VecGetLocalSize(x, &n));
   PetscCall(VecGetArray(x, &xa));
