@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstring>
 #include <random>
+#include <vector>
 
 using namespace boomdyn::ancf;
 
@@ -25,6 +26,30 @@ Vec8 deformedState(std::mt19937 &rng, double l, double amp)
 }
 
 double relErr(const Eigen::MatrixXd &a, const Eigen::MatrixXd &b) { return (a - b).norm() / b.norm(); }
+
+// The sections and element lengths of the bit-identity tests, in the order
+// the tests draw their random states: every axial treatment; the assumed
+// strain both slender (beam length 100 m: projection active) and stocky
+// (length 0: gamma = 1, no projection); a long and a very short element;
+// with material damping or without.
+struct KernelCase {
+  Section sec;
+  double l;
+};
+
+std::vector<KernelCase> kernelCases(bool damped)
+{
+  std::vector<KernelCase> cases;
+  for (AxialIntegration axial : {AxialIntegration::Full, AxialIntegration::Reduced, AxialIntegration::Assumed})
+    for (double beamLength : {0.0, 100.0}) {
+      Section sec = kSteelBox;
+      sec.axialIntegration = axial;
+      sec.length = beamLength;
+      if (damped) sec.etaA = 1e-3, sec.etaB = 2e-3;
+      for (double l : {0.25, 1e-3}) cases.push_back({sec, l});
+    }
+  return cases;
+}
 
 } // namespace
 
@@ -149,12 +174,10 @@ TEST(AncfElement, CurvatureOfACircularArc)
 TEST(AncfElement, ForceOnlyPathIsBitIdentical)
 {
   std::mt19937 rng(7);
-  for (AxialIntegration axial : {AxialIntegration::Full, AxialIntegration::Reduced, AxialIntegration::Assumed})
-    for (double beamLength : {0.0, 100.0}) {
-      Section sec = kSteelBox;
-      sec.axialIntegration = axial;
-      sec.length = beamLength;
-      for (double l : {0.25, 1e-3})
+  for (const KernelCase &c : kernelCases(false)) {
+      const Section &sec = c.sec;
+      const double l = c.l, beamLength = sec.length;
+      const AxialIntegration axial = sec.axialIntegration;
         for (int trial = 0; trial < 50; ++trial) {
           const Vec8 e = deformedState(rng, l, trial % 2 ? 0.2 : 1e-4);
           Vec8 fOnly, fWithTangent;
@@ -181,12 +204,10 @@ TEST(AncfElement, ForceOnlyPathIsBitIdentical)
 TEST(AncfElement, BatchedForceIsBitIdentical)
 {
   std::mt19937 rng(13);
-  for (AxialIntegration axial : {AxialIntegration::Full, AxialIntegration::Reduced, AxialIntegration::Assumed})
-    for (double beamLength : {0.0, 100.0}) {
-      Section sec = kSteelBox;
-      sec.axialIntegration = axial;
-      sec.length = beamLength;
-      for (double l : {0.25, 1e-3})
+  for (const KernelCase &c : kernelCases(false)) {
+      const Section &sec = c.sec;
+      const double l = c.l, beamLength = sec.length;
+      const AxialIntegration axial = sec.axialIntegration;
         for (int trial = 0; trial < 50; ++trial) {
           Vec8 e[kForceBatch], f[kForceBatch], expected[kForceBatch];
           const double *ep[kForceBatch];
@@ -216,13 +237,10 @@ TEST(AncfElement, BatchedDampedForceIsBitIdentical)
 {
   std::mt19937 rng(19);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
-  for (AxialIntegration axial : {AxialIntegration::Full, AxialIntegration::Reduced, AxialIntegration::Assumed})
-    for (double beamLength : {0.0, 100.0}) {
-      Section sec = kSteelBox;
-      sec.axialIntegration = axial;
-      sec.length = beamLength;
-      sec.etaA = 1e-3, sec.etaB = 2e-3;
-      for (double l : {0.25, 1e-3})
+  for (const KernelCase &c : kernelCases(true)) {
+      const Section &sec = c.sec;
+      const double l = c.l, beamLength = sec.length;
+      const AxialIntegration axial = sec.axialIntegration;
         for (int trial = 0; trial < 50; ++trial) {
           Vec8 e[kForceBatch], edot[kForceBatch], f[kForceBatch], fd[kForceBatch], expF[kForceBatch],
               expFd[kForceBatch];
@@ -260,13 +278,10 @@ TEST(AncfElement, InternalAndDampingForceIsBitIdentical)
 {
   std::mt19937 rng(11);
   std::uniform_real_distribution<double> rate(-1.0, 1.0);
-  for (AxialIntegration axial : {AxialIntegration::Full, AxialIntegration::Reduced, AxialIntegration::Assumed})
-    for (double beamLength : {0.0, 100.0}) {
-      Section sec = kSteelBox;
-      sec.axialIntegration = axial;
-      sec.length = beamLength;
-      sec.etaA = 1e-3, sec.etaB = 2e-3;
-      for (double l : {0.25, 1e-3})
+  for (const KernelCase &c : kernelCases(true)) {
+      const Section &sec = c.sec;
+      const double l = c.l, beamLength = sec.length;
+      const AxialIntegration axial = sec.axialIntegration;
         for (int trial = 0; trial < 50; ++trial) {
           const Vec8 e = deformedState(rng, l, trial % 2 ? 0.2 : 1e-4);
           Vec8 edot;
