@@ -10,7 +10,11 @@
 //    refactorization and, when it fell below `growth_drop` times that of the
 //    last full factorization, the matrix is factored again with pivoting.
 //  - Several right-hand sides in one solve (kluSolveColumns(), used by the
-//    tracking refinements): one pass over L and U for up to four columns.
+//    tracking refinements): one pass over L and U for up to eight columns,
+//    on the factors extracted from KLU's (klu_extract, once per numeric
+//    factorization) and with the columns side by side as short vectors:
+//    about half of KLU's own solve's instructions, each column bitwise
+//    KLU's.
 // Options (prefix of the factored matrix, none for boomdyn's matrices):
 //   -mat_boomklu_refactor <reuse>       reuse the pivot order (false: klu_factor every time);
 //                                       default: the value of -boom_jacobian_reuse (true), since
@@ -33,8 +37,9 @@ inline constexpr const char *MATSOLVERBOOMKLU = "boomklu";
 PetscErrorCode registerKluSolver();
 
 // For a factor made by "boomklu": overwrites the `columns` columns of x
-// (leading dimension ld >= rows) with the solutions of A x = x, all in one
-// KLU solve, and sets *done. For any other factor *done is false and x is
+// (leading dimension ld >= rows) with the solutions of A x = x, eight
+// columns per pass over the factors (one column: KLU's own solve), and sets
+// *done. For any other factor *done is false and x is
 // untouched (the caller solves column by column). Each column's solution is
 // bitwise that of MatSolve with the same factor.
 PetscErrorCode kluSolveColumns(Mat factor, PetscInt columns, PetscInt ld, double *x, PetscBool *done);
@@ -44,6 +49,7 @@ struct KluFactorCounts {
   PetscInt full = 0;      // klu_factor (with pivoting)
   PetscInt refactors = 0; // klu_refactor accepted
   PetscInt rejected = 0;  // klu_refactor whose pivot growth sent it back to klu_factor
+  PetscInt offDiagonal = 0; // entries outside the diagonal blocks of the last factorization's block triangular form
 };
 PetscErrorCode kluFactorCounts(Mat factor, KluFactorCounts *counts, PetscBool *isKlu);
 
