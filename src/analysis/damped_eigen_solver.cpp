@@ -229,7 +229,7 @@ PetscErrorCode solveDampedModes(Assembler &assembler, double t, Vec q, Vec lambd
   PetscCall(PEPGetST(pep, &st));
   PetscCall(STSetType(st, STSINVERT));
   PetscCall(STGetKSP(st, &ksp));
-  PetscCall(useDirectSolver(ksp));
+  PetscCall(useAnalysisDirectSolver(ksp));
 
   std::vector<Candidate> modes;
   std::vector<double> re, im;

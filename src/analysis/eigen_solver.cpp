@@ -221,7 +221,7 @@ PetscErrorCode solveModes(Assembler &assembler, double t, Vec q, Vec lambda, int
   PetscCall(EPSGetST(eps, &st));
   PetscCall(STSetType(st, STSINVERT));
   PetscCall(STGetKSP(st, &ksp));
-  PetscCall(useDirectSolver(ksp));
+  PetscCall(useAnalysisDirectSolver(ksp));
 
   // Solve for nev pairs; keep the finite, non-negative ones; if fewer than
   // `count` remain, ask for more (never beyond nf).

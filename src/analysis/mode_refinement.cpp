@@ -24,7 +24,7 @@ PetscErrorCode ModeRefiner::prepare(double t, Vec q, Vec lambda, double target, 
     if (!ksp_) {
       PetscCall(KSPCreate(assembler_.comm(), ksp_.address()));
       PetscCall(KSPSetOptionsPrefix(ksp_, "modal_st_"));
-      PetscCall(useDirectSolver(ksp_));
+      PetscCall(useAnalysisDirectSolver(ksp_));
       PetscCall(KSPSetFromOptions(ksp_));
     } else {
       PetscCall(KSPReset(ksp_));

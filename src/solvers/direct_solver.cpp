@@ -1,6 +1,7 @@
 #include "boomdyn/direct_solver.hpp"
 
 #include "boomdyn/klu_solver.hpp"
+#include "boomdyn/schur_complement_solver.hpp"
 
 namespace boomdyn {
 
@@ -31,6 +32,20 @@ PetscErrorCode useDirectSolver(KSP ksp)
     PetscCall(PetscSNPrintf(name, sizeof name, "-%smat_mumps_icntl_14", prefix ? prefix : ""));
     PetscCall(PetscOptionsSetValue(nullptr, name, "200"));
   }
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode useAnalysisDirectSolver(KSP ksp)
+{
+  PetscMPIInt size;
+  PetscBool schur = PETSC_FALSE;
+  PetscFunctionBeginUser;
+  PetscCall(useDirectSolver(ksp));
+  PetscCallMPI(MPI_Comm_size(PetscObjectComm((PetscObject)ksp), &size));
+  // The time steps' option (read there under the Newton solver's prefix, none
+  // for the dynamic run): the eigen-analyses follow the run's choice.
+  PetscCall(PetscOptionsGetBool(nullptr, nullptr, "-boom_schur_dd", &schur, nullptr));
+  if (size > 1 && schur) PetscCall(useSchurComplementSolver(ksp));
   PetscFunctionReturn(0);
 }
 
