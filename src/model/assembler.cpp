@@ -151,10 +151,18 @@ PetscErrorCode Assembler::buildPattern()
   PetscCall(VecDuplicate(xLocal_, fLocal_.address()));
   PetscCall(VecScatterCreate(xTemplate_, is, xLocal_, nullptr, scatter_.address()));
   PetscCall(ISDestroy(&is));
-  // One rank (or a rank whose items touch only its own unknowns): the local
-  // vector is the owned part of x in the same order, and the scatters are
-  // copies that can be skipped (x and F are read and written in place).
-  inPlace_ = nloc == hi - lo && (nloc == 0 || (needed.front() == lo && needed.back() == hi - 1));
+  // One rank (or ranks whose items all touch only their own unknowns): the
+  // local vector is the owned part of x in the same order, and the scatters
+  // are copies that can be skipped (x and F are read and written in place).
+  // Decided by all ranks together: the scatter is collective (its first use
+  // sets up a PetscSF, whose two-sided setup every rank enters), so one rank
+  // skipping it while another needs it hung the run (a cantilever clamped
+  // at its end on 2 ranks: the last rank owns the clamp's coordinates and
+  // multipliers, so its items touch only its own rows).
+  const int mine = nloc == hi - lo && (nloc == 0 || (needed.front() == lo && needed.back() == hi - 1)) ? 1 : 0;
+  int everywhere = 0;
+  PetscCallMPI(MPI_Allreduce(&mine, &everywhere, 1, MPI_INT, MPI_MIN, comm_));
+  inPlace_ = everywhere == 1;
   qc_.assign(nloc, 0.0), vc_.assign(nloc, 0.0), ac_.assign(nloc, 0.0);
   offsetZero_[0] = offsetZero_[1] = offsetZero_[2] = true;
   firstOrder_.assign(nloc, 0);

@@ -220,6 +220,33 @@ TEST(RankIndependence, KinkedExtractionMatchesSingleRank)
   runOnAllRanksAndOne(scene, "kinked extraction");
 }
 
+// The cantilever clamped at its end and loaded at its start: the last rank
+// owns the clamp's coordinates and (as every rank's multipliers are
+// numbered last) its multipliers, so its items touch only its own rows
+// while the first rank's need the other's. That rank skipped the local
+// scatter, which is collective, and the run hung on 2 ranks (MUMPS and
+// -boom_schur_dd alike) until the ranks decided it together.
+TEST(RankIndependence, CantileverClampedAtItsEndMatchesSingleRank)
+{
+  PetscMPIInt size;
+  MPI_Comm_size(PETSC_COMM_WORLD, &size);
+  if (size == 1) GTEST_SKIP() << "run under mpiexec -n 2 (CTest: mpi2.regression)";
+  const Scene scene = parseScene(R"(
+name: clamped-at-end
+analysis: dynamic
+gravity: [0, -9.81]
+bodies:
+  - {name: boom, length: 10.0, elements: 20, section: {E: 2.1e11, rho: 7850, A: 4.056e-3, I: 2.3586272e-5}}
+constraints:
+  - {type: clamp, name: base, body: boom, at: end}
+loads:
+  - {type: point_force, name: tip, body: boom, at: start, force: [0, -1000], scale: {type: smooth_step, t0: 0, t1: 0.01, from: 0, to: 1}}
+dynamic: {t_end: 0.05, dt: 1.0e-3, rho_inf: 0.8}
+)",
+                                 "clamped-at-end.yaml");
+  runOnAllRanksAndOne(scene, "cantilever clamped at its end");
+}
+
 namespace {
 
 // Tracked frequencies every 0.1 s along a shortened extraction of the paper scene.
