@@ -42,8 +42,7 @@ struct SchurContext {
   PetscInt coupled = 0;                     // |J|
   PetscInt firstRow = 0;                    // first J row of A_IG in Q order (the start of Zhat's nonzeros)
   PetscInt firstColumn = 0;                 // first J column of A_GI in P order (the trailing back substitution)
-  PetscInt tail = 0;                        // min(firstRow, firstColumn): Zhat's stored rows start here
-  std::vector<double> Zhat;                 // (nI - tail) x nG, by columns
+  std::vector<double> Zhat;                 // rows firstRow.. of U^{-T} Q^T A_IG: (nI - firstRow) x nG, by columns
   std::vector<PetscInt> agiPosition;        // per entry of A_GI: its column's P position - firstColumn
   std::vector<double> work, tailWork;       // nI and nI - firstColumn
   Eigen::PartialPivLU<Eigen::MatrixXd> S;   // factored Schur complement (all ranks)
@@ -309,10 +308,9 @@ PetscErrorCode schurSetUp(PC pc)
   for (PetscInt i = 0; i < nI; ++i)
     if (ia[i + 1] > ia[i]) ctx->firstRow = std::min(ctx->firstRow, qPosition[i]);
   for (PetscInt e = 0; e < gi[nG]; ++e) ctx->firstColumn = std::min(ctx->firstColumn, pPosition[gj[e]]);
-  ctx->tail = std::min(ctx->firstRow, ctx->firstColumn);
   ctx->agiPosition.resize(gi[nG]);
   for (PetscInt e = 0; e < gi[nG]; ++e) ctx->agiPosition[e] = pPosition[gj[e]] - ctx->firstColumn;
-  PetscCall(PetscInfo(pc, "interior factors: %d in L, %d in U; %" PetscInt_FMT " interior unknowns coupled to the interface, "
+  PetscCall(PetscInfo(ctx->interiorSolver ? (PetscObject)ctx->interiorSolver : (PetscObject)pc, "interior factors: %d in L, %d in U; %" PetscInt_FMT " interior unknowns coupled to the interface, "
                           "first at row %" PetscInt_FMT " and column %" PetscInt_FMT " of %" PetscInt_FMT "\n",
                       nI ? (int)f.Lp[nI] : 0, nI ? (int)f.Up[nI] : 0, ctx->coupled, ctx->firstRow, ctx->firstColumn, nI));
 
@@ -339,19 +337,21 @@ PetscErrorCode schurSetUp(PC pc)
   // Zhat = U^{-T} Q^T A_IG from the first J row on, and this rank's rows of
   // S: A_{G_p G} - A_{G_p I_p} (A_II^{-1} A_{I G_p}), where A_GI reads the
   // second factor at J only: the trailing back substitution of each column.
-  const PetscInt tail = ctx->tail, stored = nI - tail;
+  const PetscInt firstRow = ctx->firstRow, stored = nI - firstRow;
+  const PetscInt low = std::min(firstRow, ctx->firstColumn);
   ctx->Zhat.assign(static_cast<std::size_t>(stored) * nG, 0.0);
-  ctx->work.assign(nI, 0.0); // zero before `tail` for good: the setup's sweeps read it there
+  ctx->work.assign(nI, 0.0); // zero before `low` for good: the setup's sweeps read it there
   ctx->tailWork.resize(nI - ctx->firstColumn);
   double *w = ctx->work.data();
   for (PetscInt i = 0; i < nI; ++i)
     for (PetscInt e = ia[i]; e < ia[i + 1]; ++e)
-      ctx->Zhat[static_cast<std::size_t>(ja[e]) * stored + qPosition[i] - tail] = aigValues[e];
+      ctx->Zhat[static_cast<std::size_t>(ja[e]) * stored + qPosition[i] - firstRow] = aigValues[e];
   for (PetscMPIInt k = 0; k < nG && stored > 0; ++k) {
     double *z = ctx->Zhat.data() + static_cast<std::size_t>(k) * stored;
-    std::copy(z, z + stored, w + tail);
-    forwardSweep(f, ctx->firstRow, w);
-    std::copy(w + tail, w + nI, z);
+    std::fill(w + low, w + firstRow, 0.0); // the last column's back substitution wrote there
+    std::copy(z, z + stored, w + firstRow);
+    forwardSweep(f, firstRow, w);
+    std::copy(w + firstRow, w + nI, z);
     backSweep(f, ctx->firstColumn, 0, w);
     const double *y = w + ctx->firstColumn;
     for (PetscMPIInt r = 0; r < nG; ++r) {
@@ -434,10 +434,10 @@ PetscErrorCode schurApply(PC pc, Vec b, Vec x)
   // x_I = A_II^{-1} (b_I - A_IG x_G): the forward sweep of the bracket is
   // w - Zhat x_G (nonzero in Zhat's rows only),
   // then the whole back substitution, scattered through P.
-  const PetscInt tail = ctx->tail, stored = nI - tail;
+  const PetscInt stored = nI - ctx->firstRow;
   for (PetscInt k = 0; k < nG && stored > 0; ++k) {
     const double *z = ctx->Zhat.data() + static_cast<std::size_t>(k) * stored, xk = xMine[k];
-    double *wt = w + tail;
+    double *wt = w + ctx->firstRow;
     for (PetscInt m = 0; m < stored; ++m) wt[m] -= z[m] * xk;
   }
   backSweep(f, 0, 0, w);
@@ -461,6 +461,24 @@ PetscErrorCode schurDestroy(PC pc)
 }
 
 } // namespace
+
+PetscErrorCode schurComplementLayout(KSP ksp, SchurComplementLayout *layout)
+{
+  PC pc;
+  PetscBool shell;
+  SchurContext *ctx;
+  PetscFunctionBeginUser;
+  PetscCall(KSPGetPC(ksp, &pc));
+  PetscCall(PetscObjectTypeCompare((PetscObject)pc, PCSHELL, &shell));
+  PetscCheck(shell, PetscObjectComm((PetscObject)ksp), PETSC_ERR_ARG_WRONG, "not a Schur-complement solver");
+  PetscCall(PCShellGetContext(pc, &ctx));
+  layout->interior = static_cast<PetscInt>(ctx->interior.size());
+  layout->interface = static_cast<PetscInt>(ctx->interface.size());
+  layout->coupled = ctx->coupled;
+  layout->firstRow = ctx->firstRow;
+  layout->firstColumn = ctx->firstColumn;
+  PetscFunctionReturn(0);
+}
 
 PetscErrorCode useSchurComplementSolver(KSP ksp)
 {
