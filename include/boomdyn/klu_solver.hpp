@@ -28,6 +28,8 @@
 #pragma once
 #include <petscmat.h>
 
+#include <vector>
+
 namespace boomdyn {
 
 inline constexpr const char *MATSOLVERBOOMKLU = "boomklu";
@@ -43,6 +45,26 @@ PetscErrorCode registerKluSolver();
 // untouched (the caller solves column by column). Each column's solution is
 // bitwise that of MatSolve with the same factor.
 PetscErrorCode kluSolveColumns(Mat factor, PetscInt columns, PetscInt ld, double *x, PetscBool *done);
+
+// Marks unknowns of the sequential AIJ matrix A (last[i] != 0) that boomklu
+// orders after all others when it factors A: CAMD with these as the last
+// constraint set, in one block (no BTF). Must precede the symbolic
+// factorization (KSPSetUp); kept on A (PetscObjectCompose) for every later
+// one. Row pivoting can still move a marked unknown's pivot row earlier.
+PetscErrorCode kluSetLastUnknowns(Mat A, PetscInt n, const PetscInt *last);
+
+// The factors of boomklu's last numeric factorization of a matrix marked with
+// kluSetLastUnknowns(), as compressed columns (klu_extract). boomklu factors
+// the AIJ rows read as columns, M = A^T:  M(P[i], Q[j]) = (L U)(i, j), L unit
+// lower triangular with its diagonal first in each column, U upper triangular
+// with its diagonal last. So A x = b is U^T w = b(Q), L^T xbar = w, x(P) = xbar.
+// The arrays are resized (kept when the sizes hold) and overwritten.
+struct KluFactors {
+  PetscInt n = 0;
+  std::vector<int> Lp, Li, Up, Ui, P, Q;
+  std::vector<double> Lx, Ux;
+};
+PetscErrorCode kluExtractFactors(Mat factor, KluFactors *factors);
 
 // Counters of the factor's numeric factorizations (for tests and -ksp_view).
 struct KluFactorCounts {

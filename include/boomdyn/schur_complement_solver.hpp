@@ -7,10 +7,13 @@
 //
 //     S = A_GG - sum_p A_{G I_p} A_{I_p I_p}^{-1} A_{I_p G}.
 //
-// S is assembled by an all-gather and factored redundantly on every rank. A
-// solve is then one local sparse triangular solve per rank, a small dense
-// solve and a dense update with W_p = A_{I_p I_p}^{-1} A_{I_p G_p}, so the
-// work per rank falls like 1/P. MUMPS, the default on several ranks, factors
+// S is assembled by an all-gather and factored redundantly on every rank.
+// The interior unknowns that couple to the interface are ordered last in the
+// interior factorization, so S needs only the trailing rows of the factors,
+// and a solve is one forward and one backward sweep over each rank's interior
+// factors (the cost of one KLU solve) around a small dense solve: the work
+// per rank falls like 1/P, with no dense A_II^{-1} A_IG block at all
+// (docs/performance.md, "Two ranks: the Schur complement without W"). MUMPS, the default on several ranks, factors
 // a boom's chain-like elimination tree front by front, which is slower than
 // one KLU solve on one rank at every size measured (docs/performance.md).
 //
@@ -28,5 +31,17 @@ namespace boomdyn {
 
 // Makes ksp a KSPPREONLY with the interface Schur-complement PCSHELL.
 PetscErrorCode useSchurComplementSolver(KSP ksp);
+
+// This rank's split at the last set-up of such a ksp (tests, -info): the
+// interior unknowns coupled to the interface (J) come last in the interior
+// factorization when firstRow = firstColumn = interior - coupled; pivoting
+// that moved a J column earlier shows as a smaller firstColumn (only slower).
+struct SchurComplementLayout {
+  PetscInt interior = 0, interface = 0;
+  PetscInt coupled = 0;     // |J|
+  PetscInt firstRow = 0;    // first J row of A_IG in the factors' row order
+  PetscInt firstColumn = 0; // first J column of A_GI in the factors' column order
+};
+PetscErrorCode schurComplementLayout(KSP ksp, SchurComplementLayout *layout);
 
 } // namespace boomdyn

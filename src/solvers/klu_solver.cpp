@@ -4,6 +4,7 @@
 // operations table and data live behind PETSc's private header, as in
 // PETSc's own interfaces to external solvers.
 #include <petsc/private/matimpl.h>
+#include <camd.h>
 #include <klu.h>
 
 #include <algorithm>
@@ -41,6 +42,7 @@ struct KluFactor {
   PetscBool refactor = PETSC_TRUE;
   PetscReal growthDrop = 1e-2;
   double fullGrowth = 0; // reciprocal pivot growth of the last klu_factor
+  bool orderedLast = false; // analysed with kluSetLastUnknowns' constraint (one block, no BTF)
   KluFactorCounts counts;
   ExtractedFactors extracted;
 
@@ -183,14 +185,52 @@ PetscErrorCode factorNumeric(Mat F, Mat A, const MatFactorInfo *)
   PetscFunctionReturn(0);
 }
 
+// The name under which kluSetLastUnknowns() composes its marks on a matrix.
+const char *const lastUnknownsKey = "boomklu_last_unknowns";
+
+// KLU's user ordering (klu_common.ordering = 3): CAMD with the constraint
+// set in user_data (0 first, 1 last). Returns KLU's estimate of nnz(L) (as
+// its AMD branch), 0 on failure.
+int camdLast(int n, int *Ap, int *Ai, int *perm, klu_common *common)
+{
+  const auto *last = static_cast<const std::vector<int> *>(common->user_data);
+  double control[CAMD_CONTROL], info[CAMD_INFO];
+  camd_defaults(control);
+  const int status = camd_order(n, Ap, Ai, perm, control, info, last->data());
+  if (status != CAMD_OK && status != CAMD_OK_BUT_JUMBLED) return 0;
+  return std::max(1, static_cast<int>(info[CAMD_LNZ]) + n);
+}
+
+PetscErrorCode destroyLastUnknowns(void *p)
+{
+  delete static_cast<std::vector<int> *>(p);
+  return 0;
+}
+
 PetscErrorCode factorSymbolic(Mat F, Mat A, IS, IS, const MatFactorInfo *)
 {
   KluFactor *lu = data(F);
   Rows rows;
   PetscFunctionBeginUser;
   lu->release();
+  // Unknowns that kluSetLastUnknowns() marked on A go last: CAMD on the
+  // whole matrix, without BTF (whose blocks the extracted factors of
+  // kluExtractFactors() would leave out) and its off-diagonal part.
+  PetscContainer container = nullptr;
+  std::vector<int> *last = nullptr;
+  PetscCall(PetscObjectQuery((PetscObject)A, lastUnknownsKey, (PetscObject *)&container));
+  if (container) PetscCall(PetscContainerGetPointer(container, (void **)&last));
   PetscCall(rows.borrow(A));
+  PetscCheck(!last || (PetscInt)last->size() == rows.n, PETSC_COMM_SELF, PETSC_ERR_ARG_SIZ,
+             "boomklu: %zu unknowns marked to go last on a matrix of %" PetscInt_FMT " rows", last ? last->size() : 0,
+             rows.n);
+  lu->orderedLast = last != nullptr;
+  lu->common.btf = last ? 0 : 1;
+  lu->common.ordering = last ? 3 : 0;
+  lu->common.user_order = last ? camdLast : nullptr;
+  lu->common.user_data = last;
   lu->symbolic = klu_analyze(rows.n, rows.p(), rows.i(), &lu->common);
+  lu->common.user_data = nullptr; // the container may go before the factor
   PetscCall(rows.giveBack());
   PetscCheck(lu->symbolic, PETSC_COMM_SELF, PETSC_ERR_LIB, "boomklu: KLU analysis failed (status %d)",
              lu->common.status);
@@ -481,6 +521,41 @@ PetscErrorCode kluSolveColumns(Mat factor, PetscInt columns, PetscInt ld, double
   }
   PetscCall(PetscLogFlops(2.0 * columns * (data(factor)->numeric->lnz + data(factor)->numeric->unz)));
   *done = PETSC_TRUE;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode kluSetLastUnknowns(Mat A, PetscInt n, const PetscInt *last)
+{
+  PetscContainer container;
+  PetscFunctionBeginUser;
+  auto *marks = new std::vector<int>(last, last + n);
+  for (int &m : *marks) m = m ? 1 : 0;
+  PetscCall(PetscContainerCreate(PETSC_COMM_SELF, &container));
+  PetscCall(PetscContainerSetPointer(container, marks));
+  PetscCall(PetscContainerSetUserDestroy(container, destroyLastUnknowns));
+  PetscCall(PetscObjectCompose((PetscObject)A, lastUnknownsKey, (PetscObject)container));
+  PetscCall(PetscContainerDestroy(&container)); // A holds it now
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode kluExtractFactors(Mat factor, KluFactors *f)
+{
+  PetscFunctionBeginUser;
+  PetscCheck(isKluFactor(factor) && data(factor)->numeric && !factor->factorerrortype, PETSC_COMM_SELF,
+             PETSC_ERR_ARG_WRONGSTATE, "boomklu: no numeric factorization to extract");
+  KluFactor *lu = data(factor);
+  // One block and no scaling: L and U are then the whole factorization.
+  PetscCheck(lu->orderedLast && lu->symbolic->nblocks == 1 && !lu->numeric->Rs, PETSC_COMM_SELF,
+             PETSC_ERR_ARG_WRONGSTATE,
+             "boomklu: only a factorization analysed with kluSetLastUnknowns (one block, unscaled) can be extracted");
+  const int n = lu->symbolic->n;
+  f->n = n;
+  f->Lp.resize(n + 1), f->Up.resize(n + 1), f->P.resize(n), f->Q.resize(n);
+  f->Li.resize(lu->numeric->lnz), f->Lx.resize(lu->numeric->lnz);
+  f->Ui.resize(lu->numeric->unz), f->Ux.resize(lu->numeric->unz);
+  PetscCheck(klu_extract(lu->numeric, lu->symbolic, f->Lp.data(), f->Li.data(), f->Lx.data(), f->Up.data(), f->Ui.data(),
+                         f->Ux.data(), nullptr, nullptr, nullptr, f->P.data(), f->Q.data(), nullptr, nullptr, &lu->common),
+             PETSC_COMM_SELF, PETSC_ERR_LIB, "boomklu: klu_extract failed (status %d)", lu->common.status);
   PetscFunctionReturn(0);
 }
 

@@ -28,11 +28,23 @@ struct SchurContext {
   // MatCreateSubMatrix with MAT_REUSE_MATRIX, which searches and sorts every
   // row again (about a tenth of a two-rank step on the 10^5-element boom).
   std::vector<PetscInt> sourceOf[4];
-  KSP interiorSolver = nullptr;             // KLU on A_II
-  Vec bI = nullptr, yI = nullptr;
-  // A_II^{-1} A_{I G_p}, by rows: a solve streams it once, row by row, fused
-  // with the interior update (see schurApply).
-  Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> W;
+  KSP interiorSolver = nullptr;             // KLU on A_II (boomklu)
+  // No W = A_II^{-1} A_IG (nI x nG dense: 19 MB on rank 0 of the 10^5-element
+  // boom, solved for every factorization and streamed by every apply). The
+  // interior unknowns that A_IG and A_GI touch (J) are ordered last in A_II's
+  // factorization, so with A_II = Q U^T L^T P (klu_solver.hpp: boomklu factors
+  // the transpose) only the trailing rows of the triangular factors meet the
+  // interface: U^{-T} Q^T A_IG (Zhat) is zero before the first J row, and
+  // A_GI needs only the trailing part of a back substitution. A solve is one
+  // forward and one backward sweep over L and U, as one KLU solve.
+  KluFactors lu;                            // A_II's factors, extracted after each factorization
+  std::vector<PetscInt> gatherB, scatterX;  // gatherB[m] = interior[Q[m]], scatterX[m] = interior[P[m]]
+  PetscInt coupled = 0;                     // |J|
+  PetscInt firstRow = 0;                    // first J row of A_IG in Q order (the start of Zhat's nonzeros)
+  PetscInt firstColumn = 0;                 // first J column of A_GI in P order (the trailing back substitution)
+  std::vector<double> Zhat;                 // rows firstRow.. of U^{-T} Q^T A_IG: (nI - firstRow) x nG, by columns
+  std::vector<PetscInt> agiPosition;        // per entry of A_GI: its column's P position - firstColumn
+  std::vector<double> work, tailWork;       // nI and nI - firstColumn
   Eigen::PartialPivLU<Eigen::MatrixXd> S;   // factored Schur complement (all ranks)
 
   PetscErrorCode destroy()
@@ -44,8 +56,6 @@ struct SchurContext {
     PetscCall(MatDestroy(&AGG));
     matrixId = -1;
     PetscCall(KSPDestroy(&interiorSolver));
-    PetscCall(VecDestroy(&bI));
-    PetscCall(VecDestroy(&yI));
     PetscFunctionReturn(0);
   }
 };
@@ -85,6 +95,38 @@ PetscErrorCode blockSources(Mat Ad, const std::vector<PetscInt> &rows, const std
   PetscCall(MatRestoreRowIJ(block, 0, PETSC_FALSE, PETSC_FALSE, &nb, &bi, &bj, &done));
   PetscCall(MatRestoreRowIJ(Ad, 0, PETSC_FALSE, PETSC_FALSE, &n, &ia, &ja, &done));
   PetscFunctionReturn(0);
+}
+
+// The sweeps over boomklu's extracted factors (KluFactors): A_II x = b is
+// U^T w = b(Q), then L^T xbar = w, x(P) = xbar. Row-oriented on the
+// transposes, so each position is one dot product with a column of U or L
+// (KLU's own transposed solve does the same).
+
+// w[j] for j in [from, n): U^T w = w in place, positions before `from` read as they are.
+inline void forwardSweep(const KluFactors &f, PetscInt from, double *w)
+{
+  const int *up = f.Up.data(), *ui = f.Ui.data();
+  const double *ux = f.Ux.data();
+  for (PetscInt j = from; j < f.n; ++j) {
+    const int end = up[j + 1] - 1; // U's diagonal is the last entry of its column
+    double s = w[j];
+    for (int p = up[j]; p < end; ++p) s -= ux[p] * w[ui[p]];
+    w[j] = s / ux[end];
+  }
+}
+
+// L^T x = w for positions [to, n) in place, w indexed from `base` (w[i - base]
+// is position i); only positions after `to` are read.
+inline void backSweep(const KluFactors &f, PetscInt to, PetscInt base, double *w)
+{
+  const int *lp = f.Lp.data(), *li = f.Li.data();
+  const double *lx = f.Lx.data();
+  double *x = w - base;
+  for (PetscInt j = f.n - 1; j >= to; --j) {
+    double s = x[j];
+    for (int p = lp[j] + 1; p < lp[j + 1]; ++p) s -= lx[p] * x[li[p]]; // L's unit diagonal comes first
+    x[j] = s;
+  }
 }
 
 PetscErrorCode schurSetUp(PC pc)
@@ -197,60 +239,81 @@ PetscErrorCode schurSetUp(PC pc)
   PetscCall(ISDestroy(&isG));
   Mat AIG = ctx->AIG, AGG = ctx->AGG;
   if (!sameSplit) {
+    // J: the interior unknowns with entries in A_IG's rows or A_GI's columns
+    // (the same set for a structurally symmetric pattern), ordered last.
+    std::vector<PetscInt> inJ(nI, 0);
+    const PetscInt *ia, *ja;
+    PetscInt nr;
+    PetscBool done;
+    PetscCall(MatGetRowIJ(AIG, 0, PETSC_FALSE, PETSC_FALSE, &nr, &ia, &ja, &done));
+    PetscCheck(done && nr == nI, PETSC_COMM_SELF, PETSC_ERR_PLIB, "interior-interface block without row pointers");
+    for (PetscInt i = 0; i < nI; ++i)
+      if (ia[i + 1] > ia[i]) inJ[i] = 1;
+    PetscCall(MatRestoreRowIJ(AIG, 0, PETSC_FALSE, PETSC_FALSE, &nr, &ia, &ja, &done));
+    PetscCall(MatGetRowIJ(ctx->AGI, 0, PETSC_FALSE, PETSC_FALSE, &nr, &ia, &ja, &done));
+    PetscCheck(done && nr == nG, PETSC_COMM_SELF, PETSC_ERR_PLIB, "interface-interior block without row pointers");
+    for (PetscInt e = 0; e < ia[nG]; ++e) inJ[ja[e]] = 1;
+    PetscCall(MatRestoreRowIJ(ctx->AGI, 0, PETSC_FALSE, PETSC_FALSE, &nr, &ia, &ja, &done));
+    ctx->coupled = static_cast<PetscInt>(std::count(inJ.begin(), inJ.end(), 1));
+    if (nI > 0) PetscCall(kluSetLastUnknowns(ctx->AII, nI, inJ.data()));
+
     PC ipc;
     PetscCall(KSPCreate(PETSC_COMM_SELF, &ctx->interiorSolver));
     PetscCall(KSPSetType(ctx->interiorSolver, KSPPREONLY));
     PetscCall(KSPGetPC(ctx->interiorSolver, &ipc));
     PetscCall(PCSetType(ipc, PCLU));
     // boomdyn's KLU (klu_solver.hpp): refactorization with the last pivot
-    // order while the pattern holds, and all columns of W in one solve below.
+    // order while the pattern holds, J last, and its factors extracted below.
     PetscCall(registerKluSolver());
     PetscCall(PCFactorSetMatSolverType(ipc, MATSOLVERBOOMKLU));
     PetscCall(KSPSetErrorIfNotConverged(ctx->interiorSolver, PETSC_TRUE));
-    PetscCall(MatCreateVecs(ctx->AII, &ctx->bI, &ctx->yI));
     ctx->matrixId = id;
   }
   PetscCall(KSPSetOperators(ctx->interiorSolver, ctx->AII, ctx->AII));
-  if (nI > 0) PetscCall(KSPSetUp(ctx->interiorSolver));
-
-  // W = A_II^{-1} A_IG. The columns of A_IG from one pass over its rows
-  // (MatGetColumnVector reads every row once per column: 2.9 x 10^6 row
-  // reads per factorization on the 10^5-element boom), then solved all at
-  // once with KLU's multi-column solve (each column bitwise what KSPSolve
-  // gives), or column by column with another factorization.
-  ctx->W.resize(nI, nG);
-  if (nI > 0 && nG > 0) {
-    Eigen::MatrixXd columns = Eigen::MatrixXd::Zero(nI, nG);
-    const PetscInt *ia, *ja;
-    PetscInt rowsIG;
-    PetscBool done;
-    const PetscScalar *values;
-    PetscCall(MatGetRowIJ(AIG, 0, PETSC_FALSE, PETSC_FALSE, &rowsIG, &ia, &ja, &done));
-    PetscCheck(done && rowsIG == nI, PETSC_COMM_SELF, PETSC_ERR_PLIB, "interior-interface block without row pointers");
-    PetscCall(MatSeqAIJGetArrayRead(AIG, &values));
-    for (PetscInt i = 0; i < nI; ++i)
-      for (PetscInt e = ia[i]; e < ia[i + 1]; ++e) columns(i, ja[e]) = values[e];
-    PetscCall(MatSeqAIJRestoreArrayRead(AIG, &values));
-    PetscCall(MatRestoreRowIJ(AIG, 0, PETSC_FALSE, PETSC_FALSE, &rowsIG, &ia, &ja, &done));
+  KluFactors &f = ctx->lu;
+  if (nI > 0) {
+    PetscCall(KSPSetUp(ctx->interiorSolver));
     PC ipc;
     Mat factor;
-    PetscBool solved = PETSC_FALSE;
     PetscCall(KSPGetPC(ctx->interiorSolver, &ipc));
     PetscCall(PCFactorGetMatrix(ipc, &factor));
-    PetscCall(kluSolveColumns(factor, nG, nI, columns.data(), &solved));
-    for (PetscMPIInt k = 0; k < nG && !solved; ++k) {
-      PetscCall(VecPlaceArray(ctx->bI, columns.col(k).data()));
-      PetscCall(KSPSolve(ctx->interiorSolver, ctx->bI, ctx->yI));
-      PetscCall(VecResetArray(ctx->bI));
-      const PetscScalar *y;
-      PetscCall(VecGetArrayRead(ctx->yI, &y));
-      std::copy(y, y + nI, columns.col(k).data());
-      PetscCall(VecRestoreArrayRead(ctx->yI, &y));
-    }
-    ctx->W = columns; // row-major copy, streamed row by row in schurApply
+    // The values change with every factorization and, after a refused
+    // refactorization, the row pivots P too: extracted every time (one pass
+    // over L and U, a fraction of the factorization's own work).
+    PetscCall(kluExtractFactors(factor, &f));
+  } else {
+    f = KluFactors{};
   }
 
-  // This rank's rows of S: A_{G_p G} - A_{G_p I_p} W (columns G_p only for the second term).
+  // Positions of J in the factors' orders: rows of A_IG in Q order (fixed by
+  // the analysis: CAMD puts them last), columns of A_GI in P order (pivoting
+  // may move one earlier, which lengthens the trailing sweeps, not more).
+  std::vector<PetscInt> qPosition(nI), pPosition(nI);
+  ctx->gatherB.resize(nI), ctx->scatterX.resize(nI);
+  for (PetscInt m = 0; m < nI; ++m) {
+    qPosition[f.Q[m]] = m, pPosition[f.P[m]] = m;
+    ctx->gatherB[m] = ctx->interior[f.Q[m]], ctx->scatterX[m] = ctx->interior[f.P[m]];
+  }
+  const PetscInt *ia, *ja, *gi, *gj;
+  const PetscScalar *aigValues, *agiValues;
+  PetscInt nr;
+  PetscBool done;
+  PetscCall(MatGetRowIJ(AIG, 0, PETSC_FALSE, PETSC_FALSE, &nr, &ia, &ja, &done));
+  PetscCheck(done && nr == nI, PETSC_COMM_SELF, PETSC_ERR_PLIB, "interior-interface block without row pointers");
+  PetscCall(MatGetRowIJ(ctx->AGI, 0, PETSC_FALSE, PETSC_FALSE, &nr, &gi, &gj, &done));
+  PetscCheck(done && nr == nG, PETSC_COMM_SELF, PETSC_ERR_PLIB, "interface-interior block without row pointers");
+  PetscCall(MatSeqAIJGetArrayRead(AIG, &aigValues));
+  PetscCall(MatSeqAIJGetArrayRead(ctx->AGI, &agiValues));
+  ctx->firstRow = nI, ctx->firstColumn = nI;
+  for (PetscInt i = 0; i < nI; ++i)
+    if (ia[i + 1] > ia[i]) ctx->firstRow = std::min(ctx->firstRow, qPosition[i]);
+  for (PetscInt e = 0; e < gi[nG]; ++e) ctx->firstColumn = std::min(ctx->firstColumn, pPosition[gj[e]]);
+  ctx->agiPosition.resize(gi[nG]);
+  for (PetscInt e = 0; e < gi[nG]; ++e) ctx->agiPosition[e] = pPosition[gj[e]] - ctx->firstColumn;
+  PetscCall(PetscInfo(ctx->interiorSolver ? (PetscObject)ctx->interiorSolver : (PetscObject)pc, "interior factors: %d in L, %d in U; %" PetscInt_FMT " interior unknowns coupled to the interface, "
+                          "first at row %" PetscInt_FMT " and column %" PetscInt_FMT " of %" PetscInt_FMT "\n",
+                      nI ? (int)f.Lp[nI] : 0, nI ? (int)f.Up[nI] : 0, ctx->coupled, ctx->firstRow, ctx->firstColumn, nI));
+
   Eigen::MatrixXd rows = Eigen::MatrixXd::Zero(nG, ctx->nInterface);
   for (PetscMPIInt k = 0; k < nG; ++k) {
     PetscInt ncols;
@@ -270,11 +333,55 @@ PetscErrorCode schurSetUp(PC pc)
       }
       PetscCall(MatRestoreRow(Ao, ctx->interface[k], &ncols, &cols, &vals));
     }
-    PetscCall(MatGetRow(ctx->AGI, k, &ncols, &cols, &vals));
-    for (PetscInt c = 0; c < ncols; ++c)
-      for (PetscMPIInt j = 0; j < nG; ++j) rows(k, offsets[rank] + j) -= vals[c] * ctx->W(cols[c], j);
-    PetscCall(MatRestoreRow(ctx->AGI, k, &ncols, &cols, &vals));
   }
+  // Zhat = U^{-T} Q^T A_IG from the first J row on, and this rank's rows of
+  // S: A_{G_p G} - A_{G_p I_p} (A_II^{-1} A_{I G_p}), where A_GI reads the
+  // second factor at J only: the trailing back substitution of each column.
+  const PetscInt firstRow = ctx->firstRow, stored = nI - firstRow;
+  const PetscInt low = std::min(firstRow, ctx->firstColumn);
+  ctx->Zhat.assign(static_cast<std::size_t>(stored) * nG, 0.0);
+  ctx->work.assign(nI, 0.0); // zero before `low` for good: the setup's sweeps read it there
+  ctx->tailWork.resize(nI - ctx->firstColumn);
+  double *w = ctx->work.data();
+  for (PetscInt i = 0; i < nI; ++i)
+    for (PetscInt e = ia[i]; e < ia[i + 1]; ++e)
+      ctx->Zhat[static_cast<std::size_t>(ja[e]) * stored + qPosition[i] - firstRow] = aigValues[e];
+  // U's columns from firstRow on without their rows before firstRow, which
+  // are zero in every column of Zhat: copied once, since coupled unknowns at
+  // both ends of a rank's piece (the clamped node and the cut on rank 0 of
+  // the long boom) make those columns of U full, and the forward sweep of
+  // each interface column read them whole (rank 0, 20 000 elements, 20
+  // steps: the set-up's own instructions 92 M -> 34 M).
+  std::vector<int> tailStart(stored + 1, 0), tailRow;
+  std::vector<double> tailValue, tailDiagonal(stored);
+  for (PetscInt j = firstRow; j < nI; ++j) {
+    const int end = f.Up[j + 1] - 1;
+    for (int p = f.Up[j]; p < end; ++p)
+      if (f.Ui[p] >= firstRow) tailRow.push_back(f.Ui[p] - firstRow), tailValue.push_back(f.Ux[p]);
+    tailDiagonal[j - firstRow] = f.Ux[end];
+    tailStart[j - firstRow + 1] = static_cast<int>(tailRow.size());
+  }
+  for (PetscMPIInt k = 0; k < nG && stored > 0; ++k) {
+    double *z = ctx->Zhat.data() + static_cast<std::size_t>(k) * stored;
+    for (PetscInt j = 0; j < stored; ++j) { // U^T z = z on the trailing rows: forwardSweep from firstRow
+      double s = z[j];
+      for (int p = tailStart[j]; p < tailStart[j + 1]; ++p) s -= tailValue[p] * z[tailRow[p]];
+      z[j] = s / tailDiagonal[j];
+    }
+    std::fill(w + low, w + firstRow, 0.0); // the last column's back substitution wrote there
+    std::copy(z, z + stored, w + firstRow);
+    backSweep(f, ctx->firstColumn, 0, w);
+    const double *y = w + ctx->firstColumn;
+    for (PetscMPIInt r = 0; r < nG; ++r) {
+      double s = 0;
+      for (PetscInt e = gi[r]; e < gi[r + 1]; ++e) s += agiValues[e] * y[ctx->agiPosition[e]];
+      rows(r, offsets[rank] + k) -= s;
+    }
+  }
+  PetscCall(MatSeqAIJRestoreArrayRead(ctx->AGI, &agiValues));
+  PetscCall(MatSeqAIJRestoreArrayRead(AIG, &aigValues));
+  PetscCall(MatRestoreRowIJ(ctx->AGI, 0, PETSC_FALSE, PETSC_FALSE, &nr, &gi, &gj, &done));
+  PetscCall(MatRestoreRowIJ(AIG, 0, PETSC_FALSE, PETSC_FALSE, &nr, &ia, &ja, &done));
   // Gather all rows (row-major blocks) and factor S on every rank.
   Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> rowMajor = rows, S(ctx->nInterface, ctx->nInterface);
   std::vector<PetscMPIInt> valCounts(size), valOffsets(size);
@@ -298,31 +405,39 @@ PetscErrorCode schurApply(PC pc, Vec b, Vec x)
 {
   SchurContext *ctx;
   const PetscScalar *barr;
-  PetscScalar *xarr, *tmp;
+  PetscScalar *xarr;
   PetscFunctionBeginUser;
   PetscCall(PCShellGetContext(pc, &ctx));
   const PetscInt nI = static_cast<PetscInt>(ctx->interior.size()), nG = static_cast<PetscInt>(ctx->interface.size());
+  const KluFactors &f = ctx->lu;
+  double *w = ctx->work.data(), *v = ctx->tailWork.data();
   PetscCall(VecGetArrayRead(b, &barr));
-  // y = A_II^{-1} b_I
-  if (nI > 0) {
-    PetscCall(VecGetArrayWrite(ctx->bI, &tmp));
-    for (PetscInt i = 0; i < nI; ++i) tmp[i] = barr[ctx->interior[i]];
-    PetscCall(VecRestoreArrayWrite(ctx->bI, &tmp));
-    PetscCall(KSPSolve(ctx->interiorSolver, ctx->bI, ctx->yI));
-  }
+  // w = U^{-T} b_I(Q), all of it; then y = A_II^{-1} b_I at J only: the
+  // back substitution from the end down to J's first column position.
+  const PetscInt *gatherB = ctx->gatherB.data();
+  for (PetscInt m = 0; m < nI; ++m) w[m] = barr[gatherB[m]];
+  forwardSweep(f, 0, w);
+  const PetscInt firstColumn = ctx->firstColumn;
+  std::copy(w + firstColumn, w + nI, v);
+  backSweep(f, firstColumn, firstColumn, v);
   // g_p = b_{G_p} - A_{G_p I_p} y, gathered; x_G = S^{-1} g on every rank.
   Eigen::VectorXd g(nG), all(ctx->nInterface);
-  const PetscScalar *y = nullptr;
-  if (nI > 0) PetscCall(VecGetArrayRead(ctx->yI, &y));
-  for (PetscInt k = 0; k < nG; ++k) {
-    PetscInt ncols;
-    const PetscInt *cols;
+  {
+    const PetscInt *gi, *gj;
     const PetscScalar *vals;
-    double s = barr[ctx->interface[k]];
-    PetscCall(MatGetRow(ctx->AGI, k, &ncols, &cols, &vals));
-    for (PetscInt c = 0; c < ncols; ++c) s -= vals[c] * y[cols[c]];
-    PetscCall(MatRestoreRow(ctx->AGI, k, &ncols, &cols, &vals));
-    g[k] = s;
+    PetscInt nr;
+    PetscBool done;
+    PetscCall(MatGetRowIJ(ctx->AGI, 0, PETSC_FALSE, PETSC_FALSE, &nr, &gi, &gj, &done));
+    PetscCheck(done && nr == nG, PETSC_COMM_SELF, PETSC_ERR_PLIB, "interface-interior block without row pointers");
+    PetscCall(MatSeqAIJGetArrayRead(ctx->AGI, &vals));
+    const PetscInt *position = ctx->agiPosition.data();
+    for (PetscInt k = 0; k < nG; ++k) {
+      double s = barr[ctx->interface[k]];
+      for (PetscInt e = gi[k]; e < gi[k + 1]; ++e) s -= vals[e] * v[position[e]];
+      g[k] = s;
+    }
+    PetscCall(MatSeqAIJRestoreArrayRead(ctx->AGI, &vals));
+    PetscCall(MatRestoreRowIJ(ctx->AGI, 0, PETSC_FALSE, PETSC_FALSE, &nr, &gi, &gj, &done));
   }
   PetscCall(VecRestoreArrayRead(b, &barr));
   std::vector<PetscMPIInt> counts(ctx->interfaceCounts.begin(), ctx->interfaceCounts.end()),
@@ -333,23 +448,23 @@ PetscErrorCode schurApply(PC pc, Vec b, Vec x)
   if (ctx->nInterface > 0) xG = ctx->S.solve(all);
   PetscMPIInt rank;
   PetscCallMPI(MPI_Comm_rank(ctx->comm, &rank));
-  const Eigen::Map<const Eigen::VectorXd> xMine(xG.data() + (ctx->nInterface > 0 ? ctx->interfaceOffsets[rank] : 0), nG);
-  // x_I = y - W x_{G_p}, one pass over W (nI x nG_p: 19 MB on rank 0 of the
-  // 10^5-element boom, half of what the interior KLU solve reads), y and x:
-  // the product into a temporary and the copy into x made three.
-  PetscCall(VecGetArrayWrite(x, &xarr));
-  if (nI > 0) {
-    const double *w = ctx->W.data(), *xg = xMine.data();
-    const PetscInt *interior = ctx->interior.data();
-    for (PetscInt i = 0; i < nI; ++i, w += nG) {
-      double s = 0;
-      for (PetscInt j = 0; j < nG; ++j) s += w[j] * xg[j];
-      xarr[interior[i]] = y[i] - s;
-    }
-    PetscCall(VecRestoreArrayRead(ctx->yI, &y));
+  const double *xMine = xG.data() + (ctx->nInterface > 0 ? ctx->interfaceOffsets[rank] : 0);
+  // x_I = A_II^{-1} (b_I - A_IG x_G): the forward sweep of the bracket is
+  // w - Zhat x_G (nonzero in Zhat's rows only),
+  // then the whole back substitution, scattered through P.
+  const PetscInt stored = nI - ctx->firstRow;
+  for (PetscInt k = 0; k < nG && stored > 0; ++k) {
+    const double *z = ctx->Zhat.data() + static_cast<std::size_t>(k) * stored, xk = xMine[k];
+    double *wt = w + ctx->firstRow;
+    for (PetscInt m = 0; m < stored; ++m) wt[m] -= z[m] * xk;
   }
+  backSweep(f, 0, 0, w);
+  PetscCall(VecGetArrayWrite(x, &xarr));
+  const PetscInt *scatterX = ctx->scatterX.data();
+  for (PetscInt m = 0; m < nI; ++m) xarr[scatterX[m]] = w[m];
   for (PetscInt k = 0; k < nG; ++k) xarr[ctx->interface[k]] = xMine[k];
   PetscCall(VecRestoreArrayWrite(x, &xarr));
+  if (nI > 0) PetscCall(PetscLogFlops(2.0 * (f.Lp[nI] + f.Up[nI]) + 2.0 * nG * stored));
   PetscFunctionReturn(0);
 }
 
@@ -364,6 +479,24 @@ PetscErrorCode schurDestroy(PC pc)
 }
 
 } // namespace
+
+PetscErrorCode schurComplementLayout(KSP ksp, SchurComplementLayout *layout)
+{
+  PC pc;
+  PetscBool shell;
+  SchurContext *ctx;
+  PetscFunctionBeginUser;
+  PetscCall(KSPGetPC(ksp, &pc));
+  PetscCall(PetscObjectTypeCompare((PetscObject)pc, PCSHELL, &shell));
+  PetscCheck(shell, PetscObjectComm((PetscObject)ksp), PETSC_ERR_ARG_WRONG, "not a Schur-complement solver");
+  PetscCall(PCShellGetContext(pc, &ctx));
+  layout->interior = static_cast<PetscInt>(ctx->interior.size());
+  layout->interface = static_cast<PetscInt>(ctx->interface.size());
+  layout->coupled = ctx->coupled;
+  layout->firstRow = ctx->firstRow;
+  layout->firstColumn = ctx->firstColumn;
+  PetscFunctionReturn(0);
+}
 
 PetscErrorCode useSchurComplementSolver(KSP ksp)
 {
