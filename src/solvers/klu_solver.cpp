@@ -439,41 +439,38 @@ bool extractFactors(KluFactor *lu)
 // the off-diagonal part, then U^T (forward) and L^T (backward), every
 // column with exactly the operations of klu_tsolve in the same order (each
 // result bitwise klu_tsolve's); the W columns side by side as vectors.
+// x[c] = X[W k + c] - sum_p v[p] X[i[p] + c], the products subtracted one
+// by one in the stored order p = begin, ..., end - 1 (klu_tsolve's order).
+inline void rowMinusProducts(const double *X, int k, int begin, int end, const int *i, const double *v,
+                             double x[kSolveWidth])
+{
+  constexpr int W = kSolveWidth;
+  for (int c = 0; c < W; ++c) x[c] = X[W * k + c];
+  for (int p = begin; p < end; ++p) {
+    const double a = v[p];
+    const double *xi = X + i[p];
+    for (int c = 0; c < W; ++c) x[c] -= a * xi[c];
+  }
+}
+
 void transposedSolve(const ExtractedFactors &e, double *X)
 {
   constexpr int W = kSolveWidth;
+  double x[W];
   for (int block = 0; block < e.nblocks; ++block) {
     const int k1 = e.R[block], k2 = e.R[block + 1];
     if (block > 0)
       for (int k = k1; k < k2; ++k) {
-        double x[W];
-        for (int c = 0; c < W; ++c) x[c] = X[W * k + c];
-        for (int p = e.Fp[k]; p < e.Fp[k + 1]; ++p) {
-          const double f = e.Fx[p];
-          const double *xi = X + e.Fi[p];
-          for (int c = 0; c < W; ++c) x[c] -= f * xi[c];
-        }
+        rowMinusProducts(X, k, e.Fp[k], e.Fp[k + 1], e.Fi.data(), e.Fx.data(), x);
         for (int c = 0; c < W; ++c) X[W * k + c] = x[c];
       }
     for (int k = k1; k < k2; ++k) { // U^T, forward
-      double x[W];
-      for (int c = 0; c < W; ++c) x[c] = X[W * k + c];
-      for (int p = e.Up[k]; p < e.Up[k + 1]; ++p) {
-        const double u = e.Ux[p];
-        const double *xi = X + e.Ui[p];
-        for (int c = 0; c < W; ++c) x[c] -= u * xi[c];
-      }
+      rowMinusProducts(X, k, e.Up[k], e.Up[k + 1], e.Ui.data(), e.Ux.data(), x);
       const double d = e.Udiag[k];
       for (int c = 0; c < W; ++c) X[W * k + c] = x[c] / d;
     }
     for (int k = k2 - 1; k >= k1; --k) { // L^T, backward
-      double x[W];
-      for (int c = 0; c < W; ++c) x[c] = X[W * k + c];
-      for (int p = e.Lp[k]; p < e.Lp[k + 1]; ++p) {
-        const double l = e.Lx[p];
-        const double *xi = X + e.Li[p];
-        for (int c = 0; c < W; ++c) x[c] -= l * xi[c];
-      }
+      rowMinusProducts(X, k, e.Lp[k], e.Lp[k + 1], e.Li.data(), e.Lx.data(), x);
       for (int c = 0; c < W; ++c) X[W * k + c] = x[c];
     }
   }
