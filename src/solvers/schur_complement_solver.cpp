@@ -153,7 +153,7 @@ struct AdoptedRows {
   std::vector<double> values;
 };
 
-constexpr int kTagPattern = 1, kTagValues = 2, kTagB = 3, kTagX = 4;
+constexpr int kTagPattern = 1, kTagValues = 2, kTagB = 3, kTagX = 4, kTagAnswer = 5;
 
 // Adoption (collective on every rank of the PC): a row owned by rank r with
 // off-process entries goes to rank p when every column of it is either
@@ -292,6 +292,7 @@ PetscErrorCode adoptRows(SchurContext *ctx, Mat A, Mat Ad, Mat Ao, const PetscIn
     PetscCall(MatSeqAIJRestoreArrayRead(Ao, &ov));
     PetscCall(MatSeqAIJRestoreArrayRead(Ad, &av));
   }
+  std::vector<AdoptedRows> offered(ctx->adoptedFrom.size());
   for (std::size_t f = 0; f < ctx->adoptedFrom.size(); ++f) {
     const PetscMPIInt r = ctx->adoptedFrom[f];
     const PetscInt rows = ctx->adoptedFromOffset[f + 1] - ctx->adoptedFromOffset[f];
@@ -302,13 +303,80 @@ PetscErrorCode adoptRows(SchurContext *ctx, Mat A, Mat Ad, Mat Ao, const PetscIn
     std::vector<PetscInt> pat(count);
     PetscCallMPI(MPI_Recv(pat.data(), count, MPIU_INT, r, kTagPattern, ctx->p2p, MPI_STATUS_IGNORE));
     PetscCheck(count >= rows, PETSC_COMM_SELF, PETSC_ERR_PLIB, "adopted rows' pattern too short");
-    in->length.insert(in->length.end(), pat.begin(), pat.begin() + rows);
-    in->columns.insert(in->columns.end(), pat.begin() + rows, pat.end());
-    const std::size_t before = in->values.size();
-    in->values.resize(before + (count - rows));
-    PetscCallMPI(MPI_Recv(in->values.data() + before, count - (PetscMPIInt)rows, MPIU_SCALAR, r, kTagValues, ctx->p2p, MPI_STATUS_IGNORE));
+    offered[f].length.assign(pat.begin(), pat.begin() + rows);
+    offered[f].columns.assign(pat.begin() + rows, pat.end());
+    offered[f].values.resize(count - rows);
+    PetscCallMPI(MPI_Recv(offered[f].values.data(), count - (PetscMPIInt)rows, MPIU_SCALAR, r, kTagValues, ctx->p2p, MPI_STATUS_IGNORE));
   }
+  // Accepted when every column of the offered rows on this rank is a row
+  // with a nonzero diagonal whose off-process columns are all accepted rows:
+  // then the adopted rows meet interior unknowns only (at acceleration level
+  // a clamp's rows against the mass of its node: nonsingular). An owner's
+  // rows are accepted or refused together (they may form one group).
+  std::vector<char> accepted(ctx->adoptedFrom.size(), 1);
+  {
+    std::vector<char> hasDiagonal(nLocal, 0);
+    const PetscScalar *av;
+    PetscCall(MatSeqAIJGetArrayRead(Ad, &av));
+    for (PetscInt i = 0; i < nLocal; ++i)
+      for (PetscInt e = ai[i]; e < ai[i + 1]; ++e)
+        if (aj[e] == i && av[e] != 0.0) hasDiagonal[i] = 1;
+    PetscCall(MatSeqAIJRestoreArrayRead(Ad, &av));
+    for (bool changed = true; changed;) {
+      changed = false;
+      std::vector<PetscInt> acceptedRows;
+      for (std::size_t f = 0; f < ctx->adoptedFrom.size(); ++f)
+        if (accepted[f])
+          acceptedRows.insert(acceptedRows.end(), ctx->adoptedGlobal.begin() + ctx->adoptedFromOffset[f],
+                              ctx->adoptedGlobal.begin() + ctx->adoptedFromOffset[f + 1]);
+      std::sort(acceptedRows.begin(), acceptedRows.end());
+      for (std::size_t f = 0; f < ctx->adoptedFrom.size(); ++f) {
+        if (!accepted[f]) continue;
+        for (PetscInt g : offered[f].columns) {
+          if (g < rowStart || g >= rowStart + nLocal) continue; // the group's own rows
+          const PetscInt j = g - rowStart;
+          bool ok = hasDiagonal[j];
+          for (PetscInt e = oi[j]; e < oi[j + 1] && ok; ++e) ok = std::binary_search(acceptedRows.begin(), acceptedRows.end(), colmap[oj[e]]);
+          if (!ok) {
+            accepted[f] = 0, changed = true;
+            break;
+          }
+        }
+      }
+    }
+  }
+  // The answers to the owners, and theirs to this rank's offers.
+  std::vector<int> answers(ctx->adoptedFrom.size()), replies(nTo);
+  for (std::size_t f = 0; f < ctx->adoptedFrom.size(); ++f) {
+    answers[f] = accepted[f];
+    requests.emplace_back();
+    PetscCallMPI(MPI_Isend(&answers[f], 1, MPI_INT, ctx->adoptedFrom[f], kTagAnswer, ctx->p2p, &requests.back()));
+  }
+  for (std::size_t t = 0; t < nTo; ++t)
+    PetscCallMPI(MPI_Recv(&replies[t], 1, MPI_INT, ctx->givenTo[t], kTagAnswer, ctx->p2p, MPI_STATUS_IGNORE));
   if (!requests.empty()) PetscCallMPI(MPI_Waitall((PetscMPIInt)requests.size(), requests.data(), MPI_STATUSES_IGNORE));
+  // Keep the accepted ones only.
+  {
+    std::vector<PetscInt> global, offsets(1, 0);
+    std::vector<PetscMPIInt> from;
+    for (std::size_t f = 0; f < ctx->adoptedFrom.size(); ++f) {
+      if (!accepted[f]) continue;
+      global.insert(global.end(), ctx->adoptedGlobal.begin() + ctx->adoptedFromOffset[f], ctx->adoptedGlobal.begin() + ctx->adoptedFromOffset[f + 1]);
+      from.push_back(ctx->adoptedFrom[f]), offsets.push_back((PetscInt)global.size());
+      in->length.insert(in->length.end(), offered[f].length.begin(), offered[f].length.end());
+      in->columns.insert(in->columns.end(), offered[f].columns.begin(), offered[f].columns.end());
+      in->values.insert(in->values.end(), offered[f].values.begin(), offered[f].values.end());
+    }
+    ctx->adoptedGlobal = std::move(global), ctx->adoptedFrom = std::move(from), ctx->adoptedFromOffset = std::move(offsets);
+    std::vector<PetscInt> local, toOffsets(1, 0);
+    std::vector<PetscMPIInt> to;
+    for (std::size_t t = 0; t < nTo; ++t) {
+      if (!replies[t]) continue;
+      local.insert(local.end(), ctx->givenLocal.begin() + ctx->givenToOffset[t], ctx->givenLocal.begin() + ctx->givenToOffset[t + 1]);
+      to.push_back(ctx->givenTo[t]), toOffsets.push_back((PetscInt)local.size());
+    }
+    ctx->givenLocal = std::move(local), ctx->givenTo = std::move(to), ctx->givenToOffset = std::move(toOffsets);
+  }
   PetscCall(MatRestoreRowIJ(Ao, 0, PETSC_FALSE, PETSC_FALSE, &n, &oi, &oj, &done));
   PetscCall(MatRestoreRowIJ(Ad, 0, PETSC_FALSE, PETSC_FALSE, &n, &ai, &aj, &done));
   PetscFunctionReturn(0);
