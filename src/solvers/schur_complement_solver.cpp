@@ -314,14 +314,14 @@ PetscErrorCode adoptRows(SchurContext *ctx, Mat A, Mat Ad, Mat Ao, const PetscIn
   // a clamp's rows against the mass of its node: nonsingular). An owner's
   // rows are accepted or refused together (they may form one group).
   std::vector<char> accepted(ctx->adoptedFrom.size(), 1);
-  {
-    std::vector<char> hasDiagonal(nLocal, 0);
+  if (!ctx->adoptedFrom.empty()) {
     const PetscScalar *av;
     PetscCall(MatSeqAIJGetArrayRead(Ad, &av));
-    for (PetscInt i = 0; i < nLocal; ++i)
-      for (PetscInt e = ai[i]; e < ai[i + 1]; ++e)
-        if (aj[e] == i && av[e] != 0.0) hasDiagonal[i] = 1;
-    PetscCall(MatSeqAIJRestoreArrayRead(Ad, &av));
+    const auto hasDiagonal = [&](PetscInt j) { // only the few rows the offered rows touch
+      for (PetscInt e = ai[j]; e < ai[j + 1]; ++e)
+        if (aj[e] == j) return av[e] != 0.0;
+      return false;
+    };
     for (bool changed = true; changed;) {
       changed = false;
       std::vector<PetscInt> acceptedRows;
@@ -335,7 +335,7 @@ PetscErrorCode adoptRows(SchurContext *ctx, Mat A, Mat Ad, Mat Ao, const PetscIn
         for (PetscInt g : offered[f].columns) {
           if (g < rowStart || g >= rowStart + nLocal) continue; // the group's own rows
           const PetscInt j = g - rowStart;
-          bool ok = hasDiagonal[j];
+          bool ok = hasDiagonal(j);
           for (PetscInt e = oi[j]; e < oi[j + 1] && ok; ++e) ok = std::binary_search(acceptedRows.begin(), acceptedRows.end(), colmap[oj[e]]);
           if (!ok) {
             accepted[f] = 0, changed = true;
@@ -344,6 +344,7 @@ PetscErrorCode adoptRows(SchurContext *ctx, Mat A, Mat Ad, Mat Ao, const PetscIn
         }
       }
     }
+    PetscCall(MatSeqAIJRestoreArrayRead(Ad, &av));
   }
   // The answers to the owners, and theirs to this rank's offers.
   std::vector<int> answers(ctx->adoptedFrom.size()), replies(nTo);
