@@ -355,6 +355,9 @@ PetscErrorCode adoptRows(SchurContext *ctx, Mat A, Mat Ad, Mat Ao, const PetscIn
   }
   for (std::size_t t = 0; t < nTo; ++t)
     PetscCallMPI(MPI_Recv(&replies[t], 1, MPI_INT, ctx->givenTo[t], kTagAnswer, ctx->p2p, MPI_STATUS_IGNORE));
+  for (std::size_t t = 0; t < nTo; ++t)
+    PetscCall(PetscInfo(nullptr, "Schur adoption: %" PetscInt_FMT " rows offered to rank %d, %s\n",
+                        ctx->givenToOffset[t + 1] - ctx->givenToOffset[t], (int)ctx->givenTo[t], replies[t] ? "accepted" : "refused"));
   if (!requests.empty()) PetscCallMPI(MPI_Waitall((PetscMPIInt)requests.size(), requests.data(), MPI_STATUSES_IGNORE));
   // Keep the accepted ones only.
   {
