@@ -17,15 +17,21 @@
 // a boom's chain-like elimination tree front by front, which is slower than
 // one KLU solve on one rank at every size measured (docs/performance.md).
 //
-// Rows with a zero diagonal (multipliers, massless slack coordinates) are
-// put on the interface, so the interior blocks are mass-bearing coordinates
-// only: nonsingular in every dynamic iteration matrix and at acceleration
+// A group of rows all of whose columns are another rank's or the group's own
+// (a clamp's multipliers, numbered last on the last rank, with the clamped
+// node on rank 0) is adopted by that rank inside the preconditioner: its
+// values and right-hand side are sent there, it is interior there, and its
+// solution comes back. Otherwise rows with a zero diagonal (multipliers,
+// massless slack coordinates) are put on the interface, so the interior
+// blocks are mass-bearing coordinates (and adopted clamps) only: nonsingular in every dynamic iteration matrix and at acceleration
 // level. Statics of a free piece between two ranks has a singular interior
 // block (no mass, no support), so the static solver keeps MUMPS unless
 // -static_boom_schur_dd is given.
 #pragma once
 
 #include <petscksp.h>
+
+#include <vector>
 
 namespace boomdyn {
 
@@ -41,6 +47,11 @@ struct SchurComplementLayout {
   PetscInt coupled = 0;     // |J|
   PetscInt firstRow = 0;    // first J row of A_IG in the factors' row order
   PetscInt firstColumn = 0; // first J column of A_GI in the factors' column order
+  // Adoption: other ranks' rows in this rank's interior (global rows) and
+  // the number of this rank's rows in other ranks' interiors.
+  std::vector<PetscInt> adoptedRows;
+  PetscInt given = 0;
+  std::vector<PetscInt> interfaceRows; // this rank's interface unknowns (global rows)
 };
 PetscErrorCode schurComplementLayout(KSP ksp, SchurComplementLayout *layout);
 

@@ -9,7 +9,9 @@
 #include "boomdyn/schur_complement_solver.hpp"
 #include "support.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <vector>
 
 using namespace boomdyn;
 using namespace boomdyn::testing;
@@ -139,5 +141,96 @@ TEST(SchurComplementSolver, SolvesAssembledSystemExactlyAndOrdersCoupledUnknowns
     // diagonal, in the pivoted column order too.
     EXPECT_EQ(layout.firstRow, layout.interior - layout.coupled);
     EXPECT_EQ(layout.firstColumn, layout.interior - layout.coupled);
+  }
+}
+
+// A cantilever's clamp, numbered the way boomdyn numbers it: the chain's
+// unknowns first, a cross-rank "rope" multiplier row (tying unknown 5 to
+// unknown kChain - 10), then the clamp's three multiplier rows last, on the
+// last rank, with columns only at the clamped unknowns 0..2 (rank 0's) and
+// themselves (stored zeros). On several ranks rank 0 adopts the clamp rows
+// into its interior (with 0..2, which then couple to no other rank), the
+// rope row stays on the interface; the preconditioner is still the exact
+// inverse, before and after refactorizations with new values.
+namespace {
+
+constexpr PetscInt kRope = kChain, kClamp = kChain + 1, kClampedSize = kChain + 4;
+
+void fillClampedSystem(Mat A, double s)
+{
+  PetscInt start, end;
+  check(MatGetOwnershipRange(A, &start, &end));
+  const PetscInt n = kChain, tied[2] = {5, n - 10};
+  for (PetscInt i = start; i < end; ++i) {
+    if (i < n) {
+      check(MatSetValue(A, i, i, 10.0 + 0.1 * i * s, INSERT_VALUES));
+      for (PetscInt k = 1; k <= 2; ++k) {
+        if (i - k >= 0) check(MatSetValue(A, i, i - k, -1.0 - 0.03 * k * s + 0.01 * i, INSERT_VALUES));
+        if (i + k < n) check(MatSetValue(A, i, i + k, -1.5 + 0.02 * k * s, INSERT_VALUES));
+      }
+      if (i == tied[0] || i == tied[1]) check(MatSetValue(A, i, kRope, i == tied[0] ? 1.0 : -0.7, INSERT_VALUES));
+      if (i < 3)
+        for (PetscInt m = 0; m < 3; ++m) check(MatSetValue(A, i, kClamp + m, (m == i ? 1.0 : 0.2 * (m + 1)) * (1.0 + 0.1 * s), INSERT_VALUES));
+    } else if (i == kRope) {
+      check(MatSetValue(A, i, tied[0], 1.0, INSERT_VALUES));
+      check(MatSetValue(A, i, tied[1], -(0.7 + 0.2 * s), INSERT_VALUES));
+      check(MatSetValue(A, i, i, 0.0, INSERT_VALUES));
+    } else {
+      const PetscInt m = i - kClamp;
+      for (PetscInt c = 0; c < 3; ++c) check(MatSetValue(A, i, c, (m == c ? 2.0 : -0.3 * (c + 1)) * (1.0 + 0.05 * s), INSERT_VALUES));
+      for (PetscInt c = 0; c < 3; ++c) check(MatSetValue(A, i, kClamp + c, 0.0, INSERT_VALUES));
+    }
+  }
+  check(MatAssemblyBegin(A, MAT_FINAL_ASSEMBLY));
+  check(MatAssemblyEnd(A, MAT_FINAL_ASSEMBLY));
+}
+
+} // namespace
+
+TEST(SchurComplementSolver, AdoptsClampRowsIntoTheClampedRanksInterior)
+{
+  PetscHandle<Mat> A;
+  check(MatCreateAIJ(PETSC_COMM_WORLD, PETSC_DECIDE, PETSC_DECIDE, kClampedSize, kClampedSize, 10, nullptr, 10, nullptr,
+                     A.address()));
+  fillClampedSystem(A, 0.0);
+  PetscHandle<KSP> ksp;
+  check(KSPCreate(PETSC_COMM_WORLD, ksp.address()));
+  check(useSchurComplementSolver(ksp));
+  check(KSPSetOperators(ksp, A, A));
+  check(KSPSetUp(ksp));
+  PetscMPIInt size, rank;
+  MPI_Comm_size(PETSC_COMM_WORLD, &size);
+  MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
+  for (int round = 0; round < 3; ++round) {
+    if (round > 0) {
+      fillClampedSystem(A, 1.0 * round);
+      check(KSPSetOperators(ksp, A, A));
+    }
+    for (int rhs = 0; rhs < 2; ++rhs) {
+      const double res = relativeResidual(ksp, A, 0.41 * rhs + round);
+      PetscPrintf(PETSC_COMM_WORLD, "  clamped system, round %d, right-hand side %d: ||Ax - b|| / ||b|| = %.2e\n", round, rhs, res);
+      EXPECT_LE(res, 1e-12) << "round " << round << ", right-hand side " << rhs;
+    }
+    SchurComplementLayout layout;
+    check(schurComplementLayout(ksp, &layout));
+    const auto onInterface = [&](PetscInt g) {
+      return std::find(layout.interfaceRows.begin(), layout.interfaceRows.end(), g) != layout.interfaceRows.end();
+    };
+    if (size == 1) {
+      EXPECT_TRUE(layout.adoptedRows.empty());
+      EXPECT_EQ(layout.given, 0);
+    } else if (rank == 0) {
+      EXPECT_EQ(layout.adoptedRows, (std::vector<PetscInt>{kClamp, kClamp + 1, kClamp + 2}));
+      EXPECT_EQ(layout.given, 0);
+      for (PetscInt g = 0; g < 3; ++g) EXPECT_FALSE(onInterface(g)) << "clamped unknown " << g;
+      EXPECT_TRUE(onInterface(5)); // the rope's end stays coupled to the last rank
+      // The interior holds the adopted rows; the interface is the cut and the rope's end.
+      EXPECT_EQ(layout.interface, 3);
+    } else {
+      EXPECT_TRUE(layout.adoptedRows.empty());
+      EXPECT_EQ(layout.given, rank == size - 1 ? 3 : 0);
+      for (PetscInt g = kClamp; g < kClamp + 3; ++g) EXPECT_FALSE(onInterface(g));
+      if (rank == size - 1) EXPECT_TRUE(onInterface(kRope));
+    }
   }
 }
