@@ -1,6 +1,6 @@
 // SNES on the assembled saddle-point system, shared by statics, dynamics and
 // the consistent-acceleration solve. Defaults: Newton with a basic (full)
-// step, KSPPREONLY + LU (KLU on one rank, MUMPS on several); every one of
+// step, KSPPREONLY + LU (KLU on one rank; on several, the interface Schur complement in dynamics, MUMPS in statics); every one of
 // them can be changed with the usual -snes_/-ksp_/-pc_ options under the
 // solver's prefix.
 //

@@ -13,9 +13,12 @@
 // and a solve is one forward and one backward sweep over each rank's interior
 // factors (the cost of one KLU solve) around a small dense solve: the work
 // per rank falls like 1/P, with no dense A_II^{-1} A_IG block at all
-// (docs/performance.md, "Two ranks: the Schur complement without W"). MUMPS, the default on several ranks, factors
-// a boom's chain-like elimination tree front by front, which is slower than
-// one KLU solve on one rank at every size measured (docs/performance.md).
+// (docs/performance.md, "Two ranks: the Schur complement without W"). It is
+// the dynamic runs' default on several ranks (NewtonSolver::setUp;
+// -boom_schur_dd 0: MUMPS). MUMPS factors a boom's chain-like elimination
+// tree front by front, which is slower than one KLU solve on one rank at
+// every size measured (docs/performance.md), and is not bitwise
+// reproducible from run to run.
 //
 // A group of rows all of whose columns are another rank's or the group's own
 // (a clamp's multipliers, numbered last on the last rank, with the clamped
@@ -23,8 +26,8 @@
 // values and right-hand side are sent there, it is interior there, and its
 // solution comes back. Otherwise rows with a zero diagonal (multipliers,
 // massless slack coordinates) are put on the interface, so the interior
-// blocks are mass-bearing coordinates (and adopted clamps) only: nonsingular in every dynamic iteration matrix and at acceleration
-// level. Statics of a free piece between two ranks has a singular interior
+// blocks are mass-bearing coordinates (and adopted clamps) only:
+// nonsingular in every dynamic iteration matrix and at acceleration level. Statics of a free piece between two ranks has a singular interior
 // block (no mass, no support), so the static solver keeps MUMPS unless
 // -static_boom_schur_dd is given.
 #pragma once

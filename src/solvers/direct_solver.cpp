@@ -42,8 +42,13 @@ PetscErrorCode useAnalysisDirectSolver(KSP ksp)
   PetscFunctionBeginUser;
   PetscCall(useDirectSolver(ksp));
   PetscCallMPI(MPI_Comm_size(PetscObjectComm((PetscObject)ksp), &size));
-  // The time steps' option (read there under the Newton solver's prefix, none
-  // for the dynamic run): the eigen-analyses follow the run's choice.
+  // Only when given: unlike the time steps' iteration matrix, whose mass
+  // term keeps every interior block well conditioned (and where the Schur
+  // complement is the default on several ranks), a pencil A - tau B with a
+  // small shift leaves a rank's piece that is free apart from its interface
+  // almost singular: with the Schur complement by default a modal test on 2
+  // ranks (TelescopeModes, extended) failed to converge. MUMPS factors the
+  // whole pencil.
   PetscCall(PetscOptionsGetBool(nullptr, nullptr, "-boom_schur_dd", &schur, nullptr));
   if (size > 1 && schur) PetscCall(useSchurComplementSolver(ksp));
   PetscFunctionReturn(0);

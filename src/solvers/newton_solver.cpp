@@ -42,7 +42,14 @@ PetscErrorCode NewtonSolver::setUp(Assembler &assembler, const char *prefix, Pet
   PetscCall(SNESGetKSP(snes_, &ksp));
   PetscCall(useDirectSolver(ksp));
 
-  PetscBool schur = PETSC_FALSE, blockTest = PETSC_TRUE;
+  // Several ranks, dynamics: the interface Schur complement by default (exact
+  // like MUMPS, 1.8x one rank on the 10^5-element boom where MUMPS was slower
+  // than one rank, and bitwise reproducible from run to run, which MUMPS is
+  // not: docs/performance.md, "Ninth round"). Statics (prefix static_) keeps
+  // MUMPS: a free piece between two ranks has a singular interior block.
+  PetscMPIInt size;
+  PetscCallMPI(MPI_Comm_size(assembler.comm(), &size));
+  PetscBool schur = size > 1 && !prefix ? PETSC_TRUE : PETSC_FALSE, blockTest = PETSC_TRUE;
   reuse_.enabled = reuseByDefault;
   PetscCall(readNewtonOptions(assembler.comm(), prefix, &reuse_, &schur, &blockTest));
   if (schur) PetscCall(useSchurComplementSolver(ksp));
