@@ -136,7 +136,8 @@ PetscErrorCode readNewtonOptions(MPI_Comm comm, const char *prefix, JacobianReus
   PetscCall(PetscOptionsInt("-boom_jacobian_max_age", "Rebuild the Jacobian after this many solves (0: never)", "",
                             reuse->maxAge, &reuse->maxAge, nullptr));
   PetscCall(PetscOptionsBool("-boom_schur_dd",
-                             "Direct solves (time steps and the tracking's eigen-analyses) by condensation onto the rank interfaces (KLU per rank) instead of MUMPS", "",
+                             "Direct solves by condensation onto the rank interfaces (KLU per rank) instead of MUMPS (default on for dynamic runs "
+                             "on several ranks; given explicitly, the tracking's eigen-analyses too)", "",
                              *schur, schur, nullptr));
   PetscCall(PetscOptionsBool("-boom_newton_block_test",
                              "Judge Newton convergence per block of unknowns (body and slack coordinates, friction states, "
