@@ -29,6 +29,7 @@ static_assert(std::is_same<PetscScalar, double>::value, "boomklu is for real sca
 // after each numeric factorization.
 struct ExtractedFactors {
   bool current = false;
+  bool refused = false; // this factorization's extraction failed: KLU solves until the next one
   int n = 0, nblocks = 0;
   std::vector<int> Lp, Li, Up, Ui, Fp, Fi, P, Q, R;
   std::vector<double> Lx, Ux, Fx, Udiag;
@@ -156,7 +157,7 @@ PetscErrorCode factorNumeric(Mat F, Mat A, const MatFactorInfo *)
   Rows rows;
   PetscFunctionBeginUser;
   F->factorerrortype = MAT_FACTOR_NOERROR;
-  lu->extracted.current = false;
+  lu->extracted.current = lu->extracted.refused = false;
   PetscCall(rows.borrow(A));
   bool done = false;
   if (lu->refactor && lu->numeric) {
@@ -508,11 +509,13 @@ PetscErrorCode kluSolveColumns(Mat factor, PetscInt columns, PetscInt ld, double
   KluFactor *lu = data(factor);
   // Several columns through the extracted factors (about half of KLU's
   // instructions per column and entry at eight columns); one column, or
-  // factors of another form, through KLU.
-  std::vector<double> &work = lu->extracted.work;
-  if (columns > 1 && lu->common.scale <= 0 && (lu->extracted.current || extractFactors(lu))) {
+  // factors of another form, through KLU. A factorization whose extraction
+  // failed is not extracted again for every call: KLU solves until the next.
+  ExtractedFactors &e = lu->extracted;
+  if (columns > 1 && lu->common.scale <= 0 && !e.current && !e.refused) e.refused = !extractFactors(lu);
+  if (columns > 1 && lu->common.scale <= 0 && e.current) {
     for (PetscInt c = 0; c < columns; c += kSolveWidth)
-      solveChunk(lu->extracted, (int)std::min<PetscInt>(kSolveWidth, columns - c), ld, x + c * ld, work);
+      solveChunk(e, (int)std::min<PetscInt>(kSolveWidth, columns - c), ld, x + c * ld, e.work);
   } else if (columns > 0) {
     PetscCall(solveInPlace(factor, columns, ld, x, false));
   }
