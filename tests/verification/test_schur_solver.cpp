@@ -63,6 +63,17 @@ namespace {
 
 constexpr PetscInt kChain = 60;
 
+// Row i < kChain of the banded chain both systems share (bandwidth 2, a
+// dominant diagonal; s changes the values, not the pattern).
+void setChainRow(Mat A, PetscInt i, double s)
+{
+  check(MatSetValue(A, i, i, 10.0 + 0.1 * i * s, INSERT_VALUES));
+  for (PetscInt k = 1; k <= 2; ++k) {
+    if (i - k >= 0) check(MatSetValue(A, i, i - k, -1.0 - 0.03 * k * s + 0.01 * i, INSERT_VALUES));
+    if (i + k < kChain) check(MatSetValue(A, i, i + k, -1.5 + 0.02 * k * s, INSERT_VALUES));
+  }
+}
+
 void fillSystem(Mat A, double s)
 {
   PetscInt start, end;
@@ -70,11 +81,7 @@ void fillSystem(Mat A, double s)
   const PetscInt n = kChain, tied[2][2] = {{1, 2 * n / 3}, {n / 2 + 3, n - 5}};
   for (PetscInt i = start; i < end; ++i) {
     if (i < n) {
-      check(MatSetValue(A, i, i, 10.0 + 0.1 * i * s, INSERT_VALUES));
-      for (PetscInt k = 1; k <= 2; ++k) {
-        if (i - k >= 0) check(MatSetValue(A, i, i - k, -1.0 - 0.03 * k * s + 0.01 * i, INSERT_VALUES));
-        if (i + k < n) check(MatSetValue(A, i, i + k, -1.5 + 0.02 * k * s, INSERT_VALUES));
-      }
+      setChainRow(A, i, s);
       for (int m = 0; m < 2; ++m)
         for (PetscInt t : tied[m])
           if (t == i) check(MatSetValue(A, i, n + m, 1.0 + 0.1 * m, INSERT_VALUES));
@@ -163,11 +170,7 @@ void fillClampedSystem(Mat A, double s)
   const PetscInt n = kChain, tied[2] = {5, n - 10};
   for (PetscInt i = start; i < end; ++i) {
     if (i < n) {
-      check(MatSetValue(A, i, i, 10.0 + 0.1 * i * s, INSERT_VALUES));
-      for (PetscInt k = 1; k <= 2; ++k) {
-        if (i - k >= 0) check(MatSetValue(A, i, i - k, -1.0 - 0.03 * k * s + 0.01 * i, INSERT_VALUES));
-        if (i + k < n) check(MatSetValue(A, i, i + k, -1.5 + 0.02 * k * s, INSERT_VALUES));
-      }
+      setChainRow(A, i, s);
       if (i == tied[0] || i == tied[1]) check(MatSetValue(A, i, kRope, i == tied[0] ? 1.0 : -0.7, INSERT_VALUES));
       if (i < 3)
         for (PetscInt m = 0; m < 3; ++m) check(MatSetValue(A, i, kClamp + m, (m == i ? 1.0 : 0.2 * (m + 1)) * (1.0 + 0.1 * s), INSERT_VALUES));
