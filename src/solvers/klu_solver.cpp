@@ -18,9 +18,6 @@ namespace {
 static_assert(std::is_same<PetscInt, int>::value, "boomklu calls the int version of KLU (PETSc without 64-bit indices)");
 static_assert(std::is_same<PetscScalar, double>::value, "boomklu is for real scalars");
 
-// KLU factors the compressed columns it is given. PETSc's AIJ rows read as
-// columns are A^T, so KLU factors A^T, A x = b is KLU's transposed solve and
-// A^T x = b its plain one (as in PETSc's interface).
 // The factors as plain compressed columns (klu_extract), for the
 // several-column solves: KLU's own solve runs four columns at a time with
 // scalar arithmetic; these run them as short vectors (up to eight columns
@@ -36,6 +33,9 @@ struct ExtractedFactors {
   std::vector<double> work; // the columns being solved, row by row
 };
 
+// KLU factors the compressed columns it is given. PETSc's AIJ rows read as
+// columns are A^T, so KLU factors A^T, A x = b is KLU's transposed solve and
+// A^T x = b its plain one (as in PETSc's interface).
 struct KluFactor {
   klu_common common;
   klu_symbolic *symbolic = nullptr;
@@ -399,8 +399,7 @@ bool extractFactors(KluFactor *lu)
     return false;
   e.n = n;
   e.nblocks = num->nblocks;
-  e.Lp[0] = e.Up[0] = 0;
-  int l = 0, u = 0, lBegin = e.Lp[0], uBegin = e.Up[0]; // the extracted column starts (Lp, Up are rewritten)
+  int l = 0, u = 0, lBegin = 0, uBegin = 0; // lBegin, uBegin: the extracted column starts (Lp, Up are rewritten)
   for (int k = 0; k < n; ++k) {
     int diagonals = 0;
     const int lEnd = e.Lp[k + 1], uEnd = e.Up[k + 1];
@@ -434,12 +433,6 @@ bool extractFactors(KluFactor *lu)
   return true;
 }
 
-// A x = b for kSolveWidth = W columns held row by row in X (X[W i + c]:
-// row i of column c), permuted: KLU factored A^T (P A^T Q = L U + F, no scaling), so
-// A = Q (L U + F)^T P and the solve is KLU's transposed one, block by block:
-// the off-diagonal part, then U^T (forward) and L^T (backward), every
-// column with exactly the operations of klu_tsolve in the same order (each
-// result bitwise klu_tsolve's); the W columns side by side as vectors.
 // x[c] = X[W k + c] - sum_p v[p] X[i[p] + c], the products subtracted one
 // by one in the stored order p = begin, ..., end - 1 (klu_tsolve's order).
 inline void rowMinusProducts(const double *X, int k, int begin, int end, const int *i, const double *v,
@@ -454,6 +447,12 @@ inline void rowMinusProducts(const double *X, int k, int begin, int end, const i
   }
 }
 
+// A x = b for kSolveWidth = W columns held row by row in X (X[W i + c]:
+// row i of column c), permuted: KLU factored A^T (P A^T Q = L U + F, no scaling), so
+// A = Q (L U + F)^T P and the solve is KLU's transposed one, block by block:
+// the off-diagonal part, then U^T (forward) and L^T (backward), every
+// column with exactly the operations of klu_tsolve in the same order (each
+// result bitwise klu_tsolve's); the W columns side by side as vectors.
 void transposedSolve(const ExtractedFactors &e, double *X)
 {
   constexpr int W = kSolveWidth;
