@@ -35,6 +35,23 @@ PetscErrorCode useDirectSolver(KSP ksp)
   PetscFunctionReturn(0);
 }
 
+PetscErrorCode useRedundantDirectSolver(KSP ksp)
+{
+  PC pc, innerPc;
+  KSP inner;
+  PetscFunctionBeginUser;
+  PetscCall(KSPSetType(ksp, KSPPREONLY));
+  PetscCall(KSPGetPC(ksp, &pc));
+  PetscCall(PCSetType(pc, PCREDUNDANT));
+  PetscCall(PCRedundantGetKSP(pc, &inner));
+  PetscCall(KSPSetType(inner, KSPPREONLY));
+  PetscCall(KSPGetPC(inner, &innerPc));
+  PetscCall(PCSetType(innerPc, PCLU));
+  PetscCall(registerKluSolver());
+  PetscCall(PCFactorSetMatSolverType(innerPc, MATSOLVERBOOMKLU));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode useAnalysisDirectSolver(KSP ksp)
 {
   PetscMPIInt size;
@@ -51,6 +68,7 @@ PetscErrorCode useAnalysisDirectSolver(KSP ksp)
   // whole pencil.
   PetscCall(PetscOptionsGetBool(nullptr, nullptr, "-boom_schur_dd", &schur, nullptr));
   if (size > 1 && schur) PetscCall(useSchurComplementSolver(ksp));
+  else if (size > 1) PetscCall(useRedundantDirectSolver(ksp));
   PetscFunctionReturn(0);
 }
 

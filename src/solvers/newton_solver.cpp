@@ -45,14 +45,17 @@ PetscErrorCode NewtonSolver::setUp(Assembler &assembler, const char *prefix, Pet
   // Several ranks, dynamics: the interface Schur complement by default (exact
   // like MUMPS, 1.8x one rank on the 10^5-element boom where MUMPS was slower
   // than one rank, and bitwise reproducible from run to run, which MUMPS is
-  // not: docs/performance.md, "Ninth round"). Statics (prefix static_) keeps
-  // MUMPS: a free piece between two ranks has a singular interior block.
+  // not: docs/performance.md, "Ninth round"). Statics (prefix static_) does
+  // not: a free piece between two ranks has a singular interior block.
   PetscMPIInt size;
   PetscCallMPI(MPI_Comm_size(assembler.comm(), &size));
   PetscBool schur = size > 1 && !prefix ? PETSC_TRUE : PETSC_FALSE, blockTest = PETSC_TRUE;
   reuse_.enabled = reuseByDefault;
   PetscCall(readNewtonOptions(assembler.comm(), prefix, &reuse_, &schur, &blockTest));
   if (schur) PetscCall(useSchurComplementSolver(ksp));
+  // Statics on several ranks: every rank factors the whole Jacobian
+  // (direct_solver.hpp), reproducible from run to run, unlike MUMPS.
+  else if (size > 1 && prefix) PetscCall(useRedundantDirectSolver(ksp));
   // The modified iteration contracts linearly and stops just inside the step
   // test, while Newton's last step squares the error and ends far inside it:
   // at 1e-10 of |x| the position error left in a stiff element becomes a

@@ -294,21 +294,17 @@ TEST(RankIndependence, TrackedFrequenciesMatchSingleRank)
   EXPECT_LT(worst, 1e-8);
 }
 
-// With -boom_schur_dd the eigen-analyses' shift-and-invert solves go through
-// the interface Schur complement too (useAnalysisDirectSolver): two runs
-// give bitwise the same tracked frequencies (with MUMPS they differed in the
-// last bits from run to run: its distributed factorization adds the ranks'
-// contributions in the order its messages arrive), and they agree with one
-// rank as the MUMPS runs do.
-TEST(RankIndependence, SchurTrackingIsReproducibleAndMatchesSingleRank)
+namespace {
+
+// Tracking twice on the world communicator with `option` set (nullptr: the
+// defaults) and once on each rank alone: the two distributed runs must agree
+// bitwise, and with one rank to 1e-8.
+void expectReproducibleTracking(const char *option, const char *label)
 {
-  PetscMPIInt size;
-  MPI_Comm_size(PETSC_COMM_WORLD, &size);
-  if (size == 1) GTEST_SKIP() << "run under mpiexec -n 2 (CTest: mpi2.regression)";
-  PetscOptionsSetValue(nullptr, "-boom_schur_dd", "1");
+  if (option) PetscOptionsSetValue(nullptr, option, "1");
   const std::vector<double> first = trackedAlongExtraction(PETSC_COMM_WORLD);
   const std::vector<double> second = trackedAlongExtraction(PETSC_COMM_WORLD);
-  PetscOptionsClearValue(nullptr, "-boom_schur_dd");
+  if (option) PetscOptionsClearValue(nullptr, option);
   const std::vector<double> alone = trackedAlongExtraction(PETSC_COMM_SELF);
   ASSERT_EQ(first.size(), alone.size());
   ASSERT_EQ(second.size(), alone.size());
@@ -318,9 +314,109 @@ TEST(RankIndependence, SchurTrackingIsReproducibleAndMatchesSingleRank)
     EXPECT_EQ(first[i], second[i]) << "value " << i;
     worst = std::max(worst, std::abs(first[i] - alone[i]) / alone[i]);
   }
-  PetscPrintf(PETSC_COMM_WORLD, "  tracked frequencies with -boom_schur_dd, %d ranks vs 1: max relative difference %.3e\n",
-              size, worst);
+  PetscMPIInt size;
+  MPI_Comm_size(PETSC_COMM_WORLD, &size);
+  PetscPrintf(PETSC_COMM_WORLD, "  tracked frequencies %s, %d ranks vs 1: max relative difference %.3e\n", label, size,
+              worst);
   EXPECT_LT(worst, 1e-8);
+}
+
+} // namespace
+
+// By default the eigen-analyses on several ranks factor the whole pencil on
+// every rank with KLU (useRedundantDirectSolver): two runs give bitwise the
+// same tracked frequencies (with MUMPS they differed in the last bits from
+// run to run: its distributed factorization adds the ranks' contributions
+// in the order its messages arrive), and they agree with one rank.
+TEST(RankIndependence, TrackingIsReproducibleAndMatchesSingleRank)
+{
+  PetscMPIInt size;
+  MPI_Comm_size(PETSC_COMM_WORLD, &size);
+  if (size == 1) GTEST_SKIP() << "run under mpiexec -n 2 (CTest: mpi2.regression)";
+  expectReproducibleTracking(nullptr, "by default");
+}
+
+// With -boom_schur_dd the shift-and-invert solves go through the interface
+// Schur complement instead (useAnalysisDirectSolver): reproducible too.
+TEST(RankIndependence, SchurTrackingIsReproducibleAndMatchesSingleRank)
+{
+  PetscMPIInt size;
+  MPI_Comm_size(PETSC_COMM_WORLD, &size);
+  if (size == 1) GTEST_SKIP() << "run under mpiexec -n 2 (CTest: mpi2.regression)";
+  expectReproducibleTracking("-boom_schur_dd", "with -boom_schur_dd");
+}
+
+namespace {
+
+struct EquilibriumAndModes {
+  std::vector<double> state; // on rank 0 (gatherShape)
+  std::vector<double> omega2;
+};
+
+// The static equilibrium of `scene` at t = 0 and its lowest modes there
+// (like `analysis: modal`), on `comm`.
+EquilibriumAndModes equilibriumAndModes(const Scene &scene, MPI_Comm comm)
+{
+  Model model(scene);
+  Assembler assembler(model);
+  PetscHandle<Vec> x;
+  check(assembler.setUp(comm));
+  check(assembler.createVector(x.address()));
+  check(assembler.initialState(x));
+  StaticSolver statics(assembler);
+  check(statics.setUp());
+  PetscBool converged;
+  check(statics.solve(0.0, scene.statics.load_steps, x, nullptr, &converged));
+  EXPECT_TRUE(converged);
+  check(SlepcInitialize(nullptr, nullptr, nullptr, nullptr));
+  ModalResult modes;
+  check(solveModes(assembler, 0.0, x, statics.multipliers(), 4, &modes));
+  EquilibriumAndModes out;
+  check(gatherShape(assembler, x, &out.state));
+  out.omega2 = modes.omega2;
+  return out;
+}
+
+} // namespace
+
+// Statics and modal analyses on several ranks factor the whole matrix on
+// every rank with KLU (NewtonSolver::setUp, useAnalysisDirectSolver): two
+// runs agree bitwise. With MUMPS they did not: the static pre-solve of this
+// scene (pads in contact, 221 unknowns) differed from run to run in the last
+// bits (MUMPS adds the ranks' contributions in message-arrival order).
+TEST(RankIndependence, StaticsAndModesAreReproducibleAndMatchSingleRank)
+{
+  PetscMPIInt size, rank;
+  MPI_Comm_size(PETSC_COMM_WORLD, &size);
+  MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
+  if (size == 1) GTEST_SKIP() << "run under mpiexec -n 2 (CTest: mpi2.regression)";
+  const Scene scene = readSceneFile(std::string(BOOMDYN_SOURCE_DIR) + "/inputs/paper_extraction_pads.yaml");
+  const EquilibriumAndModes first = equilibriumAndModes(scene, PETSC_COMM_WORLD);
+  const EquilibriumAndModes second = equilibriumAndModes(scene, PETSC_COMM_WORLD);
+  const EquilibriumAndModes alone = equilibriumAndModes(scene, PETSC_COMM_SELF);
+  ASSERT_EQ(first.omega2.size(), 4u);
+  ASSERT_EQ(second.omega2.size(), 4u);
+  ASSERT_EQ(alone.omega2.size(), 4u);
+  double worstModes = 0;
+  for (std::size_t k = 0; k < 4; ++k) {
+    EXPECT_EQ(first.omega2[k], second.omega2[k]) << "mode " << k;
+    worstModes = std::max(worstModes, std::abs(first.omega2[k] - alone.omega2[k]) / alone.omega2[k]);
+  }
+  double worstState = 0, scale = 0;
+  if (rank == 0) {
+    ASSERT_EQ(first.state.size(), alone.state.size());
+    ASSERT_EQ(second.state.size(), alone.state.size());
+    for (std::size_t i = 0; i < alone.state.size(); ++i) {
+      EXPECT_EQ(first.state[i], second.state[i]) << "unknown " << i;
+      worstState = std::max(worstState, std::abs(first.state[i] - alone.state[i]));
+      scale = std::max(scale, std::abs(alone.state[i]));
+    }
+  }
+  PetscPrintf(PETSC_COMM_WORLD,
+              "  pads scene statics and modes, %d ranks vs 1: state %.3e, omega^2 %.3e relative\n", size,
+              worstState / std::max(scale, 1e-300), worstModes);
+  EXPECT_LE(worstState, 1e-9 * scale);
+  EXPECT_LT(worstModes, 1e-8);
 }
 
 // Work items distributed by a METIS partition of the item graph
