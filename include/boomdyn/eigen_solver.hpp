@@ -8,6 +8,7 @@
 #pragma once
 
 #include "boomdyn/assembler.hpp"
+#include "boomdyn/gather.hpp"
 #include "boomdyn/petsc_handle.hpp"
 
 #include <vector>
@@ -66,8 +67,10 @@ PetscErrorCode assemblePencil(Assembler &assembler, double t, Vec q, Vec lambda,
 PetscErrorCode pencilState(Assembler &assembler, Vec q, Vec lambda, Vec x, double *sigma);
 
 // Coordinate part of v on rank 0 (empty elsewhere), divided by its entry of
-// largest magnitude (as ModalResult::shapes). Collective.
-PetscErrorCode gatherShape(Assembler &assembler, Vec v, std::vector<double> *shape);
+// largest magnitude (as ModalResult::shapes). Collective. `gather` keeps
+// its scatter for the next call (the tracking gathers at every analysis);
+// null: one made for this call.
+PetscErrorCode gatherShape(Assembler &assembler, Vec v, std::vector<double> *shape, ZeroGather *gather = nullptr);
 
 // Divides a mode shape by its entry of largest magnitude, so that shapes
 // from runs on any number of ranks compare directly (sign and scale fixed).

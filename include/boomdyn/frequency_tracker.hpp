@@ -103,6 +103,7 @@ private:
   int found_ = 0;                 // modes of the last analysis (the damped analysis finds as many)
   std::vector<PetscHandle<Vec>> previous_; // the followed shapes (none before the first analysis)
   std::vector<double> previousOmega2_;
+  ZeroGather shapeGather_; // the followed shapes to rank 0 (its scatter kept between analyses)
 };
 
 // Greedy assignment on the largest MAC: mac[j][k] of followed mode j against

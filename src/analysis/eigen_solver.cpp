@@ -150,21 +150,13 @@ void normalizeShape(std::vector<double> &shape)
     for (double &s : shape) s /= big;
 }
 
-PetscErrorCode gatherShape(Assembler &assembler, Vec v, std::vector<double> *shape)
+PetscErrorCode gatherShape(Assembler &assembler, Vec v, std::vector<double> *shape, ZeroGather *gather)
 {
-  PetscHandle<VecScatter> toZero;
-  PetscHandle<Vec> gathered;
-  PetscMPIInt rank;
+  ZeroGather once; // without a caller's gather: one for this call
   PetscFunctionBeginUser;
-  PetscCallMPI(MPI_Comm_rank(assembler.comm(), &rank));
-  PetscCall(VecScatterCreateToZero(v, toZero.address(), gathered.address()));
-  PetscCall(scatterValues(toZero, v, gathered, *shape));
-  if (rank == 0) {
-    shape->resize(assembler.model().numCoordinates());
-    normalizeShape(*shape);
-  } else {
-    shape->clear();
-  }
+  // The coordinates only: the multipliers are not copied out.
+  PetscCall((gather ? gather : &once)->gather(v, *shape, assembler.model().numCoordinates()));
+  if (!shape->empty()) normalizeShape(*shape); // rank 0
   PetscFunctionReturn(0);
 }
 

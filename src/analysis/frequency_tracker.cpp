@@ -222,7 +222,7 @@ PetscErrorCode FrequencyTracker::analyze(double t, Vec q, Vec lambda, TrackedMod
     f.hz = std::sqrt(std::max(omega2[k], 0.0)) / (2.0 * M_PI);
     f.mac = macs[j];
     f.index = k;
-    PetscCall(gatherShape(assembler_, previous_[j], &f.shape));
+    PetscCall(gatherShape(assembler_, previous_[j], &f.shape, &shapeGather_));
     highest = std::max(highest, k);
   }
   wanted_ = highest + 2;
