@@ -56,8 +56,11 @@ PetscInt finiteModeBound(const Model &model);
 // sigmaOut (optional): the scale of the constraint blocks used (pencilState).
 // D (optional): the damping matrix at the same state as well, in the same
 // pass over the items (Assembler::evaluatePencil; equal to assembleDamping's).
+// work (optional): a vector of assembler.createVector()'s layout for the
+// state x (every entry is written), kept by a caller that assembles at
+// every analysis instead of one made and destroyed per call.
 PetscErrorCode assemblePencil(Assembler &assembler, double t, Vec q, Vec lambda, Mat A, Mat B,
-                              double *sigmaOut = nullptr, Mat D = nullptr);
+                              double *sigmaOut = nullptr, Mat D = nullptr, Vec work = nullptr);
 
 // The state x = [q | lambda / sigma] at which the pencil is assembled
 // (x made by assembler.createVector()), and sigma, the scale of the

@@ -68,6 +68,7 @@ private:
 
   Assembler &assembler_;
   PetscHandle<Mat> A_, B_, S_, D_;
+  PetscHandle<Vec> state_; // the pencil's state x = [q | lambda / sigma] (assemblePencil's work vector)
   CompactMatrix Ac_, Bc_, Dc_; // A, B, D without explicit zeros, for the products
   PetscHandle<KSP> ksp_;
   int pattern_ = -1;

@@ -124,12 +124,13 @@ PetscErrorCode pencilState(Assembler &assembler, Vec q, Vec lambda, Vec x, doubl
 }
 
 PetscErrorCode assemblePencil(Assembler &assembler, double t, Vec q, Vec lambda, Mat A, Mat B, double *sigmaOut,
-                              Mat D)
+                              Mat D, Vec work)
 {
-  PetscHandle<Vec> x;
+  PetscHandle<Vec> made;
   double sigma = 0; // computed by pencilState
   PetscFunctionBeginUser;
-  PetscCall(assembler.createVector(x.address()));
+  if (!work) PetscCall(assembler.createVector(made.address()));
+  Vec x = work ? work : made.get(); // pencilState writes all of it
   PetscCall(pencilState(assembler, q, lambda, x, &sigma));
   AssemblyContext ctx;
   ctx.t = t;

@@ -101,7 +101,9 @@ PetscErrorCode ModeRefiner::prepare(double t, Vec q, Vec lambda, double target, 
     pattern_ = assembler_.patternVersion();
   }
   if (withDamping && !D_) PetscCall(assembler_.createMatrix(D_.address()));
-  PetscCall(assemblePencil(assembler_, t, q, lambda, A_, B_, &sigma_, withDamping ? D_.get() : nullptr));
+  // The state vector's layout is that of x, whatever the pattern: made once.
+  if (!state_) PetscCall(assembler_.createVector(state_.address()));
+  PetscCall(assemblePencil(assembler_, t, q, lambda, A_, B_, &sigma_, withDamping ? D_.get() : nullptr, state_));
   PetscCall(Ac_.update(A_));
   PetscCall(Bc_.update(B_));
   if (withDamping) PetscCall(Dc_.update(D_));
