@@ -181,13 +181,9 @@ struct Subspace {
 struct RitzPair {
   std::complex<double> lambda;
   Eigen::VectorXcd y;
-  // Its Ritz vector met the tolerance in the full space at an earlier
-  // projection: kept as it is (y padded with zeros gives the same x = V y,
-  // the first columns of V do not change), no functional iteration, and
-  // its residual and fitted multipliers are those of that projection.
+  // Its Ritz vector met the tolerance in the full space: no further
+  // functional iteration (its subspace is not expanded any more).
   bool converged = false;
-  double residual = 0;  // ||T(lambda) x|| / ||K x|| of its Ritz vector
-  Eigen::VectorXd ar, ai; // the fitted multipliers of x = V y (MultiplierFit)
 };
 
 // K y, D y, M y for a complex y and real K, D, M: the functional iteration
@@ -325,44 +321,17 @@ bool functionalIteration(const Eigen::MatrixXd &K, const Eigen::MatrixXd &D, con
   return true;
 }
 
-// The `count` damped pairs of the projected problem that continue `pairs`
-// (ascending |lambda|). With no pairs yet, started from the lowest undamped
-// Ritz pairs of (K, M) with omega^2 > 0. False when an iteration fails, two
-// pairs meet, or a pair is not oscillating (Im lambda > 0): the full solve
-// decides (it also reports overdamped cases with fewer modes).
-bool projectedModes(const Eigen::MatrixXd &K, const Eigen::MatrixXd &D, const Eigen::MatrixXd &M, int count,
-                    std::vector<RitzPair> *pairs)
+// Continues `pair` on the projected problem of its grown subspace (its y
+// padded with zeros: the first columns of the subspace did not change). A
+// pair that met the tolerance at an earlier projection keeps its vector
+// (RitzPair::converged). False when the iteration fails or the pair is not
+// oscillating (Im lambda > 0): the full solve decides (it also reports
+// overdamped cases with fewer modes).
+bool continuePair(const Eigen::MatrixXd &K, const Eigen::MatrixXd &D, const Eigen::MatrixXd &M, RitzPair *pair)
 {
-  const int p = (int)K.rows();
-  if (pairs->empty()) {
-    Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> undamped(K, M);
-    if (undamped.info() != Eigen::Success) return false;
-    const Eigen::VectorXd w2 = undamped.eigenvalues();
-    const double scale = std::abs(w2[p - 1]);
-    for (int j = 0; j < p && (int)pairs->size() < count; ++j) {
-      if (!(w2[j] > 1e-8 * scale)) continue; // rigid-body modes: not oscillating
-      Eigen::VectorXcd y = undamped.eigenvectors().col(j).cast<std::complex<double>>();
-      y /= y.norm();
-      Products P;
-      P.of(K, D, M, y);
-      RitzPair pair;
-      pair.lambda = rayleighFunctional(P, y, std::complex<double>(0.0, std::sqrt(w2[j])));
-      pair.y = y;
-      pairs->push_back(pair);
-    }
-    if ((int)pairs->size() < count) return false;
-  } else {
-    for (RitzPair &pair : *pairs) pair.y.conservativeResizeLike(Eigen::VectorXcd::Zero(p)); // V grew
-  }
-  for (RitzPair &pair : *pairs)
-    if (!(pair.converged || functionalIteration(K, D, M, &pair)) ||
-        !(pair.lambda.imag() > 1e-10 * std::abs(pair.lambda)))
-      return false;
-  std::sort(pairs->begin(), pairs->end(),
-            [](const RitzPair &a, const RitzPair &b) { return std::abs(a.lambda) < std::abs(b.lambda); });
-  for (int k = 1; k < count; ++k)
-    if (std::abs((*pairs)[k].lambda - (*pairs)[k - 1].lambda) <= 1e-8 * std::abs((*pairs)[k].lambda)) return false;
-  return true;
+  pair->y.conservativeResizeLike(Eigen::VectorXcd::Zero(K.rows()));
+  return (pair->converged || functionalIteration(K, D, M, pair)) &&
+         pair->lambda.imag() > 1e-10 * std::abs(pair->lambda);
 }
 
 } // namespace
@@ -371,7 +340,7 @@ PetscErrorCode DampedModeRefiner::refine(double t, Vec q, Vec lambda, Mat K, Mat
                                          const std::vector<PetscHandle<Vec>> &modes, int count,
                                          DampedModalResult *result, DampedRefinementInfo *info, bool *converged)
 {
-  Subspace sub;
+  Subspace base;
   PetscFunctionBeginUser;
   *converged = false;
   *info = DampedRefinementInfo{};
@@ -392,140 +361,220 @@ PetscErrorCode DampedModeRefiner::refine(double t, Vec q, Vec lambda, Mat K, Mat
   const PetscInt n = blocks_.localSize(), nq = assembler_.model().numCoordinates();
   MultiplierFit multipliers;
   PetscCall(multipliers.setUp(K, blocks_, nq, assembler_.model().numMultipliers()));
-  sub.firstMultiplierRow = std::min<PetscInt>(n, std::max<PetscInt>(0, nq - blocks_.firstRow()));
-  sub.null = &multipliers;
-  sub.blocks = &blocks_;
+  base.firstMultiplierRow = std::min<PetscInt>(n, std::max<PetscInt>(0, nq - blocks_.firstRow()));
+  base.null = &multipliers;
+  base.blocks = &blocks_;
   const int m = (int)modes.size();
-  sub.V.resize(n, m + count + 2 * count * maxIterations);
-  for (Block *b : {&sub.KV, &sub.DV, &sub.MV}) b->resize(n, sub.V.cols());
+  base.V.resize(n, m);
+  for (Block *b : {&base.KV, &base.DV, &base.MV}) b->resize(n, m);
 
+  // The undamped modes, shared by every pair's subspace: orthonormalized,
+  // multiplied and projected once.
   bool ok = true;
   Block phi(n, m);
   for (int k = 0; k < m; ++k) {
     PetscCall(blocks_.fromVec(modes[k], phi.col(k).data()));
-    PetscCall(sub.append(phi.col(k)));
+    PetscCall(base.append(phi.col(k)));
   }
+  PetscCall(base.multiply(K, D, M));
+  Eigen::MatrixXd K0, D0, M0, C;
+  PetscCall(base.project(base.KV, 0, &K0));
+  PetscCall(base.project(base.DV, 0, &D0));
+  PetscCall(base.project(base.MV, 0, &M0));
+  const int m0 = base.p;
+  // The modes in the basis of base.V, and their omega^2 (Rayleigh quotients):
+  // the `count` lowest oscillating ones are followed (rigid-body modes of a
+  // mechanism, omega^2 ~ 0, are not).
+  PetscCall(blocks_.inner(base.V.leftCols(m0), phi, &C));
+  std::vector<int> wanted;
+  std::vector<double> w2(m);
+  double scale = 0;
+  for (int k = 0; k < m; ++k) {
+    const double mk = C.col(k).dot(M0 * C.col(k));
+    w2[k] = mk > 0 ? C.col(k).dot(K0 * C.col(k)) / mk : 0.0;
+    scale = std::max(scale, std::abs(w2[k]));
+  }
+  for (int k = 0; k < m && (int)wanted.size() < count; ++k)
+    if (w2[k] > 1e-8 * scale) wanted.push_back(k);
+  if ((int)wanted.size() < count) ok = false;
+
   // The first-order change of the modes by the damping: T(i w) (phi + dx) = 0
   // gives (K - w^2 M) dx ~ -i w D phi, approximated with P = K - tau M and
   // the first term of (K - w^2 M)^{-1} = P^{-1} + (w^2 - tau) P^{-1} M P^{-1}
-  // + ...: u = P^{-1} D phi and P^{-1} M u. The second vector saves a
-  // projection (3 instead of 4 on the paper scene at 10 ms, about a tenth
-  // of a run with tracking every 1 ms); P^{-1} D u (second order in the
-  // damping) saved none. The products as blocks, the appends in the order
-  // u_0, P^{-1} M u_0, u_1, ...
-  const int corrected = std::min(count, m); // the wanted ones; the guard modes need no correction
-  Block rhs(n, corrected), U(n, corrected), U2(n, corrected);
-  PetscCall(blocks_.multiply(D, phi.leftCols(corrected), rhs));
-  PetscCall(blocks_.solveColumns(solver, rhs, U, &ok));
+  // + ...: u = P^{-1} D phi and P^{-1} M u (the second saves a projection;
+  // P^{-1} D u, second order in the damping, and a third term of the series
+  // cost more than they save: docs/performance.md, "Tenth round"). The
+  // products and solves of all pairs as blocks.
+  Block rhs(n, count), U(n, count), U2(n, count), W(n, count);
+  for (int j = 0; ok && j < count; ++j) W.col(j) = phi.col(wanted[j]);
+  if (ok) PetscCall(blocks_.multiply(D, W, rhs));
+  if (ok) PetscCall(blocks_.solveColumns(solver, rhs, U, &ok));
   if (ok) PetscCall(blocks_.multiply(M, U, rhs));
   if (ok) PetscCall(blocks_.solveColumns(solver, rhs, U2, &ok));
-  for (int k = 0; k < corrected && ok; ++k) {
-    PetscCall(sub.append(U.col(k)));
-    PetscCall(sub.append(U2.col(k)));
+
+  // One subspace per wanted pair: [the modes, its u, P^{-1} M u, its own
+  // expansions]. Each pair's projected quadratic problem stays small (p <=
+  // m + 2 + 2 maxIterations, against m + 2 count + 2 count maxIterations for
+  // a subspace shared by all pairs), and its dense solves are most of a
+  // projection's cost; the pairs' products and solves are still one block.
+  struct Pair {
+    Subspace sub;
+    Eigen::MatrixXd Kp, Dp, Mp; // projected on sub's first `projected` columns
+    int projected = 0;
+    RitzPair ritz;
+    bool open = true;           // still iterating
+    double best = HUGE_VAL;     // residual of the best iterate
+    Block x;                    // its vector (real, imaginary part)
+    Eigen::MatrixXd a;          // its fitted multipliers
+  };
+  std::vector<Pair> pairs(ok ? count : 0);
+  for (int j = 0; j < (int)pairs.size(); ++j) {
+    Pair &pr = pairs[j];
+    Subspace &sub = pr.sub;
+    sub.firstMultiplierRow = base.firstMultiplierRow, sub.null = base.null, sub.blocks = base.blocks;
+    const Eigen::Index capacity = m0 + 2 + 2 * maxIterations;
+    for (Block *b : {&sub.V, &sub.KV, &sub.DV, &sub.MV}) b->resize(n, capacity);
+    sub.V.leftCols(m0) = base.V.leftCols(m0), sub.KV.leftCols(m0) = base.KV.leftCols(m0);
+    sub.DV.leftCols(m0) = base.DV.leftCols(m0), sub.MV.leftCols(m0) = base.MV.leftCols(m0);
+    sub.p = sub.multiplied = pr.projected = m0;
+    pr.Kp = K0, pr.Dp = D0, pr.Mp = M0;
+    // The start: the undamped mode (its coordinates in base.V) and the root
+    // of its Rayleigh functional nearest i omega.
+    const int k = wanted[j];
+    Eigen::VectorXcd y = C.col(k).cast<std::complex<double>>();
+    y /= y.norm();
+    Products P;
+    P.of(K0, D0, M0, y);
+    pr.ritz.lambda = rayleighFunctional(P, y, std::complex<double>(0.0, std::sqrt(w2[k])));
+    pr.ritz.y = y;
+    PetscCall(sub.append(U.col(j)));
+    PetscCall(sub.append(U2.col(j)));
   }
 
-  double before = HUGE_VAL, bestWorst = HUGE_VAL;
-  int bestP = 0;
-  std::vector<RitzPair> pairs, best; // the wanted pairs of the projected problem, continued across expansions
-  Eigen::MatrixXd Kp, Dp, Mp;        // the projected matrices, the first `projected` columns up to date
-  int projected = 0;
-  for (int it = 1; ok && it <= maxIterations && sub.p <= maxSubspace; ++it) {
-    PetscCall(sub.multiply(K, D, M));
-    PetscCall(sub.project(sub.KV, projected, &Kp));
-    PetscCall(sub.project(sub.DV, projected, &Dp));
-    PetscCall(sub.project(sub.MV, projected, &Mp));
-    projected = sub.p;
-    const bool found = projectedModes(Kp, Dp, Mp, count, &pairs);
-    if (!found) break; // the full solve decides (and may report fewer)
-    // The pairs whose Ritz vector did not meet the tolerance at an earlier
-    // projection: a converged pair keeps its x (RitzPair::converged), its
-    // residual and multipliers, so only these need products here.
-    std::vector<int> open;
-    for (int k = 0; k < count; ++k)
-      if (!pairs[k].converged) open.push_back(k);
-    const int o = (int)open.size();
-    // Real and imaginary parts side by side: columns j and o + j for open[j].
-    Eigen::MatrixXd Y(sub.p, 2 * o), Dc(sub.p, 2 * o), Mc(sub.p, 2 * o);
-    for (int j = 0; j < o; ++j) {
-      const RitzPair &pair = pairs[open[j]];
-      const std::complex<double> l = pair.lambda, l2 = l * l;
-      const Eigen::VectorXd yr = pair.y.real(), yi = pair.y.imag();
-      Y.col(j) = yr, Y.col(o + j) = yi;
-      Dc.col(j) = l.real() * yr - l.imag() * yi;
-      Dc.col(o + j) = l.real() * yi + l.imag() * yr;
-      Mc.col(j) = l2.real() * yr - l2.imag() * yi;
-      Mc.col(o + j) = l2.real() * yi + l2.imag() * yr;
+  int rounds = 0, largest = m0;
+  for (int it = 1; ok && it <= maxIterations; ++it) {
+    rounds = it;
+    // K, D, M times every open pair's new columns, as one block.
+    std::vector<int> fresh(count, 0);
+    int total = 0;
+    for (int j = 0; j < count; ++j)
+      if (pairs[j].open) fresh[j] = pairs[j].sub.p - pairs[j].sub.multiplied, total += fresh[j];
+    if (total > 0) {
+      Block X(n, total), KX(n, total), DX(n, total), MX(n, total);
+      for (int j = 0, c = 0; j < count; c += fresh[j], ++j)
+        if (fresh[j]) X.middleCols(c, fresh[j]) = pairs[j].sub.V.middleCols(pairs[j].sub.multiplied, fresh[j]);
+      PetscCall(blocks_.multiply(K, X, KX));
+      PetscCall(blocks_.multiply(D, X, DX));
+      PetscCall(blocks_.multiply(M, X, MX));
+      for (int j = 0, c = 0; j < count; c += fresh[j], ++j) {
+        if (!fresh[j]) continue;
+        Subspace &sub = pairs[j].sub;
+        sub.KV.middleCols(sub.multiplied, fresh[j]) = KX.middleCols(c, fresh[j]);
+        sub.DV.middleCols(sub.multiplied, fresh[j]) = DX.middleCols(c, fresh[j]);
+        sub.MV.middleCols(sub.multiplied, fresh[j]) = MX.middleCols(c, fresh[j]);
+        sub.multiplied = sub.p;
+      }
     }
-    // K x and r = K x + lambda D x + lambda^2 M x, real and imaginary parts,
-    // from the products kept with V (no product with the matrices here);
-    // the D and M terms as one product each with the combined coefficients.
-    // x = V y itself is needed for the best iterate only (at the end).
-    const auto KV = sub.KV.leftCols(sub.p), DV = sub.DV.leftCols(sub.p), MV = sub.MV.leftCols(sub.p);
-    // Tall times small: LocalBlocks::combine.
-    Block KX(n, 2 * o), R(n, 2 * o);
-    LocalBlocks::combine(KV, Y, KX);
-    R = KX;
-    LocalBlocks::combine(DV, Dc, R, true);
-    LocalBlocks::combine(MV, Mc, R, true);
-    // The fitted multipliers a add K e_i a_i = c a to K x as well.
-    Eigen::MatrixXd a;
-    PetscCall(multipliers.fit(R, &a));
-    if (a.size()) LocalBlocks::combine(multipliers.c, a, KX, true);
-    Eigen::VectorXd kn, rn;
-    PetscCall(blocks_.columnNorms(KX, &kn));
-    PetscCall(blocks_.columnNorms(R, &rn));
-    // The expansions: the solver applied to the residuals of the pairs that
-    // did not converge (real and imaginary part each), as one block.
+    // Each open pair: projection, its functional iteration, its residual
+    // r = K x + lambda D x + lambda^2 M x from the products kept with V
+    // (real and imaginary parts side by side), the fitted multipliers.
     std::vector<int> expand;
-    double worst = 0;
-    for (int j = 0; j < o; ++j) {
-      RitzPair &pair = pairs[open[j]];
-      const double knorm = std::hypot(kn[j], kn[o + j]);
-      pair.residual = knorm > 0 ? std::hypot(rn[j], rn[o + j]) / knorm : 1.0;
-      if (a.size()) pair.ar = a.col(j), pair.ai = a.col(o + j);
-      pair.converged = pair.residual <= tolerance;
-      if (!pair.converged) expand.insert(expand.end(), {j, o + j});
+    Block residuals(n, 2 * count);
+    for (int j = 0; ok && j < count; ++j) {
+      Pair &pr = pairs[j];
+      if (!pr.open) continue;
+      Subspace &sub = pr.sub;
+      if (it > 1 && sub.p == pr.projected) { // its expansions lay in its subspace already
+        pr.open = false;
+        continue;
+      }
+      PetscCall(sub.project(sub.KV, pr.projected, &pr.Kp));
+      PetscCall(sub.project(sub.DV, pr.projected, &pr.Dp));
+      PetscCall(sub.project(sub.MV, pr.projected, &pr.Mp));
+      pr.projected = sub.p;
+      largest = std::max(largest, sub.p);
+      if (!continuePair(pr.Kp, pr.Dp, pr.Mp, &pr.ritz)) {
+        ok = false;
+        break;
+      }
+      const std::complex<double> l = pr.ritz.lambda, l2 = l * l;
+      const Eigen::VectorXd yr = pr.ritz.y.real(), yi = pr.ritz.y.imag();
+      Eigen::MatrixXd Y(sub.p, 2), Dc(sub.p, 2), Mc(sub.p, 2);
+      Y.col(0) = yr, Y.col(1) = yi;
+      Dc.col(0) = l.real() * yr - l.imag() * yi, Dc.col(1) = l.real() * yi + l.imag() * yr;
+      Mc.col(0) = l2.real() * yr - l2.imag() * yi, Mc.col(1) = l2.real() * yi + l2.imag() * yr;
+      Block KX(n, 2), R(n, 2);
+      LocalBlocks::combine(sub.KV.leftCols(sub.p), Y, KX);
+      R = KX;
+      LocalBlocks::combine(sub.DV.leftCols(sub.p), Dc, R, true);
+      LocalBlocks::combine(sub.MV.leftCols(sub.p), Mc, R, true);
+      // The fitted multipliers a add K e_i a_i = c a to K x as well.
+      Eigen::MatrixXd a;
+      PetscCall(multipliers.fit(R, &a));
+      if (a.size()) LocalBlocks::combine(multipliers.c, a, KX, true);
+      Eigen::VectorXd kn, rn;
+      PetscCall(blocks_.columnNorms(KX, &kn));
+      PetscCall(blocks_.columnNorms(R, &rn));
+      const double knorm = std::hypot(kn[0], kn[1]);
+      const double residual = knorm > 0 ? std::hypot(rn[0], rn[1]) / knorm : 1.0;
+      if (residual < pr.best) {
+        // The best iterate so far: past the round-off floor of the residual
+        // (about 1e-9 on the paper scene) further expansions are noise and
+        // can make the projection worse.
+        pr.best = residual;
+        pr.x.resize(n, 2);
+        LocalBlocks::combine(sub.V.leftCols(sub.p), Y, pr.x);
+        pr.a = a;
+      }
+      pr.ritz.converged = residual <= tolerance;
+      // Converged, past the round-off floor (the residual grew), or out of
+      // room: this pair is finished.
+      if (pr.ritz.converged || residual > pr.best || sub.p + 2 > sub.V.cols()) {
+        pr.open = false;
+        continue;
+      }
+      residuals.col(2 * (Eigen::Index)expand.size()) = R.col(0);
+      residuals.col(2 * (Eigen::Index)expand.size() + 1) = R.col(1);
+      expand.push_back(j);
     }
-    Block residuals(n, (Eigen::Index)expand.size()), expansion(n, (Eigen::Index)expand.size());
-    for (std::size_t c = 0; c < expand.size(); ++c) residuals.col(c) = R.col(expand[c]);
-    PetscCall(blocks_.solveColumns(solver, residuals, expansion, &ok));
-    for (int k = 0; k < count; ++k) worst = std::max(worst, pairs[k].residual);
-    info->iterations = it;
-    info->subspace = sub.p;
-    if (worst < bestWorst) {
-      // The best iterate so far: past the round-off floor of the residual
-      // (about 1e-9 on the paper scene) further expansions are noise and can
-      // make the projection worse (spurious Ritz pairs near the wanted ones).
-      bestWorst = worst;
-      best.assign(pairs.begin(), pairs.begin() + count);
-      bestP = sub.p;
+    if (!ok || expand.empty()) break;
+    // The expansions: the solver applied to the open pairs' residuals (real
+    // and imaginary part each), as one block; each pair takes its own two.
+    const Eigen::Index e = 2 * (Eigen::Index)expand.size();
+    Block expansion(n, e);
+    PetscCall(blocks_.solveColumns(solver, residuals.leftCols(e), expansion, &ok));
+    for (std::size_t c = 0; ok && c < expand.size(); ++c) {
+      PetscCall(pairs[expand[c]].sub.append(expansion.col(2 * c)));
+      PetscCall(pairs[expand[c]].sub.append(expansion.col(2 * c + 1)));
     }
-    if (worst <= tolerance || worst > before) break; // converged, or past the round-off floor
-    before = worst;
-    for (Eigen::Index c = 0; ok && c < expansion.cols(); ++c) PetscCall(sub.append(expansion.col(c)));
   }
-  info->worstResidual = bestWorst;
-  if (bestWorst <= tolerance) {
-    // x = V y of the best iterate (V's first bestP columns are those of its
-    // projection) and the fitted multipliers.
-    Eigen::MatrixXd Y(bestP, 2 * count), A;
-    for (int k = 0; k < count; ++k) {
-      Y.col(k) = best[k].y.real().head(bestP), Y.col(count + k) = best[k].y.imag().head(bestP);
-    }
-    Block X(n, 2 * count);
-    LocalBlocks::combine(sub.V.leftCols(bestP), Y, X);
-    if (multipliers.c.cols() > 0) {
-      A.resize(multipliers.c.cols(), 2 * count);
-      for (int k = 0; k < count; ++k) A.col(k) = best[k].ar, A.col(count + k) = best[k].ai;
-      multipliers.addMultipliers(X, A);
-    }
+  double worst = 0;
+  for (const Pair &pr : pairs) worst = std::max(worst, pr.best);
+  info->iterations = rounds;
+  info->subspace = largest;
+  info->worstResidual = pairs.empty() ? HUGE_VAL : worst;
+  // Ascending |lambda| (as solveDampedModes); two pairs that found the same
+  // mode go to the full solve.
+  std::vector<int> order(pairs.size());
+  for (std::size_t j = 0; j < order.size(); ++j) order[j] = (int)j;
+  std::sort(order.begin(), order.end(), [&](int a, int b) {
+    return std::abs(pairs[a].ritz.lambda) < std::abs(pairs[b].ritz.lambda);
+  });
+  bool distinct = true;
+  for (std::size_t j = 1; j < order.size(); ++j) {
+    const std::complex<double> l = pairs[order[j]].ritz.lambda, before = pairs[order[j - 1]].ritz.lambda;
+    distinct = distinct && std::abs(l - before) > 1e-8 * std::abs(l);
+  }
+  if (ok && !pairs.empty() && worst <= tolerance && distinct) {
     PetscHandle<Vec> xr, xi;
     PetscCall(VecDuplicate(modes[0], xr.address()));
     PetscCall(VecDuplicate(modes[0], xi.address()));
-    for (int k = 0; k < count; ++k) {
-      PetscCall(blocks_.toVec(X.col(k).data(), xr));
-      PetscCall(blocks_.toVec(X.col(count + k).data(), xi));
-      PetscCall(appendDampedMode(assembler_, best[k].lambda, xr, xi, best[k].residual, keepVectors, result));
+    for (int j : order) {
+      Pair &pr = pairs[j];
+      if (multipliers.c.cols() > 0) multipliers.addMultipliers(pr.x, pr.a);
+      PetscCall(blocks_.toVec(pr.x.col(0).data(), xr));
+      PetscCall(blocks_.toVec(pr.x.col(1).data(), xi));
+      PetscCall(appendDampedMode(assembler_, pr.ritz.lambda, xr, xi, pr.best, keepVectors, result));
     }
     *converged = true;
   }
