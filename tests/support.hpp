@@ -271,13 +271,15 @@ struct HandIntegration {
 };
 
 // The modes of a scene at its static equilibrium under its loads at t = 0
-// (like `analysis: modal`); expects the statics to converge.
-inline ModalResult modesAtStaticEquilibrium(const Scene &scene, int count)
+// (like `analysis: modal`) on `comm`; expects the statics to converge.
+// With `state`, the equilibrium too (gathered on rank 0).
+inline ModalResult modesAtStaticEquilibrium(const Scene &scene, int count, MPI_Comm comm = PETSC_COMM_WORLD,
+                                            std::vector<double> *state = nullptr)
 {
   Model model(scene);
   Assembler assembler(model);
   PetscHandle<Vec> x;
-  check(assembler.setUp(PETSC_COMM_WORLD));
+  check(assembler.setUp(comm));
   check(assembler.createVector(x.address()));
   check(assembler.initialState(x));
   StaticSolver statics(assembler);
@@ -288,6 +290,7 @@ inline ModalResult modesAtStaticEquilibrium(const Scene &scene, int count)
   check(SlepcInitialize(nullptr, nullptr, nullptr, nullptr));
   ModalResult modes;
   check(solveModes(assembler, 0.0, x, statics.multipliers(), count, &modes));
+  if (state) check(gatherShape(assembler, x, state));
   return modes;
 }
 

@@ -357,23 +357,8 @@ struct EquilibriumAndModes {
 // (like `analysis: modal`), on `comm`.
 EquilibriumAndModes equilibriumAndModes(const Scene &scene, MPI_Comm comm)
 {
-  Model model(scene);
-  Assembler assembler(model);
-  PetscHandle<Vec> x;
-  check(assembler.setUp(comm));
-  check(assembler.createVector(x.address()));
-  check(assembler.initialState(x));
-  StaticSolver statics(assembler);
-  check(statics.setUp());
-  PetscBool converged;
-  check(statics.solve(0.0, scene.statics.load_steps, x, nullptr, &converged));
-  EXPECT_TRUE(converged);
-  check(SlepcInitialize(nullptr, nullptr, nullptr, nullptr));
-  ModalResult modes;
-  check(solveModes(assembler, 0.0, x, statics.multipliers(), 4, &modes));
   EquilibriumAndModes out;
-  check(gatherShape(assembler, x, &out.state));
-  out.omega2 = modes.omega2;
+  out.omega2 = modesAtStaticEquilibrium(scene, 4, comm, &out.state).omega2;
   return out;
 }
 
