@@ -64,16 +64,6 @@ private:
     double power = 0;
   };
   mutable DampingMemo dampingMemo_;
-  // The tangent stiffness (internalForce's K) at q, kept by scales(): the
-  // eigen-analysis computes the constraint scale at its state and then
-  // assembles the pencil there, whose stiffness pass needs the same K
-  // (evaluatePencil takes it when q is bitwise the same).
-  struct StiffnessMemo {
-    bool valid = false;
-    ancf::Vec8 q;
-    ancf::Mat8 K;
-  };
-  mutable StiffnessMemo stiffnessMemo_;
 
   const AncfBeam *beam_;
   int element_;

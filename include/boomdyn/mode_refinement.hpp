@@ -72,7 +72,6 @@ private:
   CompactMatrix Ac_, Bc_, Dc_; // A, B, D without explicit zeros, for the products
   PetscHandle<KSP> ksp_;
   int pattern_ = -1;
-  bool fusedShift_ = false; // A, B, S sequential with the same arrays: S = A - target B in one pass
   bool factored_ = false;
   double sigma_ = 0;
   LocalBlocks blocks_; // the vectors of the refinement as dense local blocks (local_block.hpp)

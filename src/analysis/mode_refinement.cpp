@@ -10,75 +10,6 @@
 
 namespace boomdyn {
 
-namespace {
-
-// Whether A, B and S are sequential AIJ matrices with the same compressed
-// rows (they are on one rank: one COO pattern, and S a duplicate of A).
-PetscErrorCode sameArrays(Mat A, Mat B, Mat S, bool *same)
-{
-  Mat m[3] = {A, B, S};
-  const PetscInt *ia[3], *ja[3];
-  PetscInt rows[3];
-  PetscBool done[3] = {PETSC_FALSE, PETSC_FALSE, PETSC_FALSE}, sequential = PETSC_TRUE;
-  PetscFunctionBeginUser;
-  *same = false;
-  for (Mat x : m) {
-    PetscBool seq;
-    PetscCall(PetscObjectTypeCompare((PetscObject)x, MATSEQAIJ, &seq));
-    sequential = (PetscBool)(sequential && seq);
-  }
-  if (!sequential) PetscFunctionReturn(0);
-  for (int k = 0; k < 3; ++k) PetscCall(MatGetRowIJ(m[k], 0, PETSC_FALSE, PETSC_FALSE, &rows[k], &ia[k], &ja[k], &done[k]));
-  if (done[0] && done[1] && done[2] && rows[0] == rows[1] && rows[0] == rows[2]) {
-    const PetscInt n = rows[0], nz = ia[0][n];
-    *same = std::equal(ia[0], ia[0] + n + 1, ia[1]) && std::equal(ia[0], ia[0] + n + 1, ia[2]) &&
-            std::equal(ja[0], ja[0] + nz, ja[1]) && std::equal(ja[0], ja[0] + nz, ja[2]);
-  }
-  for (int k = 0; k < 3; ++k)
-    if (done[k]) PetscCall(MatRestoreRowIJ(m[k], 0, PETSC_FALSE, PETSC_FALSE, &rows[k], &ia[k], &ja[k], &done[k]));
-  PetscFunctionReturn(0);
-}
-
-// S = A + alpha B on their common pattern. With the same arrays (sameArrays):
-// one pass over the values, S's array written directly, instead of
-// MatCopy and MatAXPY (a copy of A into S, then S's values read and written
-// again). The same operations as MatAXPY's BLAS axpy, y + alpha x entry by
-// entry, with S = A exactly for alpha = 0 (MatAXPY returns at once then).
-// Otherwise (more ranks) the two PETSc calls.
-PetscErrorCode shiftedDifference(Mat A, Mat B, PetscScalar alpha, Mat S, bool sameArrays)
-{
-  PetscFunctionBeginUser;
-  if (!sameArrays) {
-    PetscCall(MatCopy(A, S, SAME_NONZERO_PATTERN));
-    PetscCall(MatAXPY(S, alpha, B, SAME_NONZERO_PATTERN));
-    PetscFunctionReturn(0);
-  }
-  PetscInt nz;
-  {
-    PetscInt rows;
-    const PetscInt *ia, *ja;
-    PetscBool done;
-    PetscCall(MatGetRowIJ(A, 0, PETSC_FALSE, PETSC_FALSE, &rows, &ia, &ja, &done));
-    nz = ia[rows];
-    PetscCall(MatRestoreRowIJ(A, 0, PETSC_FALSE, PETSC_FALSE, &rows, &ia, &ja, &done));
-  }
-  const PetscScalar *a, *b;
-  PetscScalar *s;
-  PetscCall(MatSeqAIJGetArrayRead(A, &a));
-  PetscCall(MatSeqAIJGetArrayRead(B, &b));
-  // Write access: S's state increases, so the factorization sees new values.
-  PetscCall(MatSeqAIJGetArrayWrite(S, &s));
-  if (alpha == 0.0) std::copy(a, a + nz, s);
-  else
-    for (PetscInt k = 0; k < nz; ++k) s[k] = a[k] + alpha * b[k];
-  PetscCall(MatSeqAIJRestoreArrayWrite(S, &s));
-  PetscCall(MatSeqAIJRestoreArrayRead(B, &b));
-  PetscCall(MatSeqAIJRestoreArrayRead(A, &a));
-  PetscFunctionReturn(0);
-}
-
-} // namespace
-
 PetscErrorCode ModeRefiner::prepare(double t, Vec q, Vec lambda, double target, bool *factored)
 {
   PetscFunctionBeginUser;
@@ -109,11 +40,9 @@ PetscErrorCode ModeRefiner::prepare(double t, Vec q, Vec lambda, double target, 
   if (withDamping) PetscCall(Dc_.update(D_));
   // A, B and S share one exact pattern (Assembler::createMatrix): the copy and
   // the update keep S's nonzero state, so the factorization below is numeric only.
-  if (!S_) {
-    PetscCall(MatDuplicate(A_, MAT_COPY_VALUES, S_.address()));
-    PetscCall(sameArrays(A_, B_, S_, &fusedShift_));
-  }
-  PetscCall(shiftedDifference(A_, B_, -target, S_, fusedShift_));
+  if (!S_) PetscCall(MatDuplicate(A_, MAT_COPY_VALUES, S_.address()));
+  else PetscCall(MatCopy(A_, S_, SAME_NONZERO_PATTERN));
+  PetscCall(MatAXPY(S_, -target, B_, SAME_NONZERO_PATTERN));
   PetscCall(KSPSetOperators(ksp_, S_, S_));
   PetscCall(KSPSetUp(ksp_));
   PC pc;

@@ -212,24 +212,13 @@ void BeamElementItem::evaluatePencil(const PencilPass (&pass)[kPencilPasses], in
   const double l = beam_->elementLength();
   ancf::Vec8 f, fd;
   ancf::Mat8 K, Kq, Dv;
-  const ancf::Mat8 *Kt = &K;
-  const StiffnessMemo &m = stiffnessMemo_;
-  if (m.valid && same(m.q.data(), A.in.q)) {
-    // The tangent scales() formed at this q (the pencil's constraint scale
-    // is computed just before, Assembler::characteristicScales): the
-    // damping kernel alone. Bitwise the fused kernel's matrices: its
-    // tangent is internalForce's, its Dv and zero Kq dampingForce's (test
-    // PencilItems.DampingKernelAtRestSetsTheSummedZerosAndTheFusedKernelAgrees),
-    // and off rest the fused kernel falls back to these two calls.
-    Kt = &m.K;
-    ancf::dampingForce(sec, l, q, v, fd, &Kq, &Dv);
-  } else if (!ancf::stiffnessAndDampingAtRest(sec, l, q, v, K, Kq, Dv)) {
-    // At rest (the eigen-analysis' v = 0) one kernel for both; else the two.
+  // At rest (the eigen-analysis' v = 0) one kernel for both; else the two.
+  if (!ancf::stiffnessAndDampingAtRest(sec, l, q, v, K, Kq, Dv)) {
     ancf::internalForce(sec, l, q, f, &K);
     ancf::dampingForce(sec, l, q, v, fd, &Kq, &Dv);
   }
   Eigen::Map<RowMajor8> Ja(A.J);
-  Ja = A.ctx.kin.cA * (*mass_) + A.ctx.kin.cQ * *Kt;
+  Ja = A.ctx.kin.cA * (*mass_) + A.ctx.kin.cQ * K;
   Ja += A.ctx.kin.cQ * Kq;
   if (B.J) Eigen::Map<RowMajor8>{B.J} = B.ctx.kin.cA * (*mass_);
   Eigen::Map<RowMajor8> Jd(D.J);
@@ -318,12 +307,8 @@ void BeamElementItem::scales(const ItemValues &in, double &massDiag, double &sti
 {
   const Eigen::Map<const ancf::Vec8> q(in.q);
   ancf::Vec8 f;
-  // Kept with its q for the pencil assembled next at the same state
-  // (evaluatePencil), which needs the same tangent.
-  StiffnessMemo &m = stiffnessMemo_;
-  ancf::Mat8 &K = m.K;
+  ancf::Mat8 K;
   ancf::internalForce(beam_->section(), beam_->elementLength(), q, f, &K);
-  m.q = q, m.valid = true;
   // Position entries only: slope entries carry other units (kg m^2).
   for (int k : {0, 1, 4, 5}) {
     massDiag += (*mass_)(k, k);
