@@ -28,19 +28,6 @@ inline PetscErrorCode scatterValues(VecScatter sc, Vec src, Vec dst, std::vector
   PetscFunctionReturn(0);
 }
 
-// All of v on rank 0 (empty elsewhere), through a scatter made for this call.
-inline PetscErrorCode gatherToZero(Vec v, std::vector<double> &out)
-{
-  VecScatter sc;
-  Vec all;
-  PetscFunctionBeginUser;
-  PetscCall(VecScatterCreateToZero(v, &sc, &all));
-  PetscCall(scatterValues(sc, v, all, out));
-  PetscCall(VecScatterDestroy(&sc));
-  PetscCall(VecDestroy(&all));
-  PetscFunctionReturn(0);
-}
-
 // Gathers to rank 0 through one scatter kept between calls: creating a
 // scatter to zero (and its PetscSF, set up at the first use) cost more than
 // the whole rest of gatherShape() at every tracking analysis. The scatter
@@ -98,5 +85,14 @@ private:
   PetscHandle<VecScatter> scatter_;
   PetscHandle<Vec> gathered_;
 };
+
+// All of v on rank 0 (empty elsewhere), through a scatter made for this call.
+inline PetscErrorCode gatherToZero(Vec v, std::vector<double> &out)
+{
+  ZeroGather once;
+  PetscFunctionBeginUser;
+  PetscCall(once.gather(v, out));
+  PetscFunctionReturn(0);
+}
 
 } // namespace boomdyn

@@ -57,18 +57,20 @@ PetscErrorCode useAnalysisDirectSolver(KSP ksp)
   PetscMPIInt size;
   PetscBool schur = PETSC_FALSE;
   PetscFunctionBeginUser;
-  PetscCall(useDirectSolver(ksp));
   PetscCallMPI(MPI_Comm_size(PetscObjectComm((PetscObject)ksp), &size));
-  // Only when given: unlike the time steps' iteration matrix, whose mass
-  // term keeps every interior block well conditioned (and where the Schur
-  // complement is the default on several ranks), a pencil A - tau B with a
-  // small shift leaves a rank's piece that is free apart from its interface
-  // almost singular: with the Schur complement by default a modal test on 2
-  // ranks (TelescopeModes, extended) failed to converge. MUMPS factors the
-  // whole pencil.
+  // The Schur complement only when given: unlike the time steps' iteration
+  // matrix, whose mass term keeps every interior block well conditioned
+  // (and where it is the default on several ranks), a pencil A - tau B with
+  // a small shift leaves a rank's piece that is free apart from its
+  // interface almost singular: with the Schur complement by default a modal
+  // test on 2 ranks (TelescopeModes, extended) failed to converge. The
+  // redundant factorization factors the whole pencil.
   PetscCall(PetscOptionsGetBool(nullptr, nullptr, "-boom_schur_dd", &schur, nullptr));
-  if (size > 1 && schur) PetscCall(useSchurComplementSolver(ksp));
-  else if (size > 1) PetscCall(useRedundantDirectSolver(ksp));
+  if (size > 1 && !schur) PetscCall(useRedundantDirectSolver(ksp));
+  else {
+    PetscCall(useDirectSolver(ksp));
+    if (size > 1) PetscCall(useSchurComplementSolver(ksp));
+  }
   PetscFunctionReturn(0);
 }
 

@@ -115,6 +115,15 @@ double relativeResidual(KSP ksp, Mat A, double shift)
   return rn / bn;
 }
 
+// A KSP with the interface Schur complement for A, set up (factored).
+void setUpSchurSolver(Mat A, PetscHandle<KSP> &ksp)
+{
+  check(KSPCreate(PETSC_COMM_WORLD, ksp.address()));
+  check(useSchurComplementSolver(ksp));
+  check(KSPSetOperators(ksp, A, A));
+  check(KSPSetUp(ksp));
+}
+
 } // namespace
 
 TEST(SchurComplementSolver, SolvesAssembledSystemExactlyAndOrdersCoupledUnknownsLast)
@@ -124,10 +133,7 @@ TEST(SchurComplementSolver, SolvesAssembledSystemExactlyAndOrdersCoupledUnknowns
   check(MatCreateAIJ(PETSC_COMM_WORLD, PETSC_DECIDE, PETSC_DECIDE, n, n, 8, nullptr, 8, nullptr, A.address()));
   fillSystem(A, 0.0);
   PetscHandle<KSP> ksp;
-  check(KSPCreate(PETSC_COMM_WORLD, ksp.address()));
-  check(useSchurComplementSolver(ksp));
-  check(KSPSetOperators(ksp, A, A));
-  check(KSPSetUp(ksp));
+  setUpSchurSolver(A, ksp);
   for (int round = 0; round < 3; ++round) {
     if (round > 0) { // new values, same pattern and operator: the refactorization path
       fillSystem(A, 1.0 * round);
@@ -197,10 +203,7 @@ TEST(SchurComplementSolver, AdoptsClampRowsIntoTheClampedRanksInterior)
                      A.address()));
   fillClampedSystem(A, 0.0);
   PetscHandle<KSP> ksp;
-  check(KSPCreate(PETSC_COMM_WORLD, ksp.address()));
-  check(useSchurComplementSolver(ksp));
-  check(KSPSetOperators(ksp, A, A));
-  check(KSPSetUp(ksp));
+  setUpSchurSolver(A, ksp);
   PetscMPIInt size, rank;
   MPI_Comm_size(PETSC_COMM_WORLD, &size);
   MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
