@@ -64,6 +64,16 @@ public:
   // from the iteration's by about the floor.
   double tolerance = 5e-9;
   int maxIterations = 6; // projections per pair
+  // The pairs the caller needs exactly: positions in `modes` of the
+  // undamped modes whose damped counterparts must reach `tolerance` (the
+  // tracking's followed modes). The other pairs stop as soon as they reach
+  // provisionalTolerance, at the first projection as a rule: enough for
+  // their eigenvalues (error of the order of the squared residual) and for
+  // comparing their shapes by MAC (FrequencyTracker::analyzeDamped), not
+  // for reporting them. Empty, or a position that is not among the `count`
+  // oscillating modes: every pair to `tolerance`.
+  std::vector<int> needed;
+  double provisionalTolerance = 1e-4;
   // Fill DampedModalResult::real, imag (tracking without a consumer of the
   // vectors skips their copies).
   bool keepVectors = true;

@@ -77,6 +77,13 @@ public:
   PetscErrorCode save(StateWriter &out) const;
   PetscErrorCode restore(const StateReader &in);
 
+  // analyzeDamped() without `modes` refines only the followed modes' damped
+  // counterparts to the full tolerance; the pick stands when every other
+  // damped mode's MAC against a followed shape is below the picked one's by
+  // this much, else all are refined (dampedRepeats() counts those analyses).
+  double dampedMacMargin = 0.05;
+  int dampedRepeats() const { return dampedRepeats_; }
+
   // The modes of the last analysis, all m = count + guard Ritz vectors
   // (empty after a full solve with fullSolve); for tests.
   const std::vector<PetscHandle<Vec>> &basis() const { return basis_; }
@@ -85,6 +92,13 @@ private:
   // Full eigen-solve; basis_ = the vectors; the first `wanted` omega^2 returned.
   PetscErrorCode solveFully(double t, Vec q, Vec lambda, double target, Vec guess, int wanted,
                             std::vector<double> *omega2);
+  // The damped mode assigned to each followed mode (largest MAC against its
+  // shape, greedy; -1: none) and the MACs (rank 0: it holds the shapes).
+  static std::vector<int> dampedPicks(const TrackedModes &out, const DampedModalResult &dm,
+                                      std::vector<std::vector<double>> *mac);
+  // Whether the picks of refined damped modes, some provisional, are those
+  // of the exact ones (analyzeDamped); collective.
+  PetscErrorCode picksStand(const TrackedModes &out, const DampedModalResult &dm, bool *stand) const;
   // The followed modes at the first analysis (positions in omega2).
   PetscErrorCode firstPicks(double t, const std::vector<double> &omega2, std::vector<int> *picks) const;
 
@@ -97,6 +111,7 @@ private:
   DampedModeRefiner dampedRefiner_;
   std::vector<PetscHandle<Vec>> basis_; // the last analysis' vectors (refinement's start)
   bool fallbackReported_ = false, dampedFallbackReported_ = false;
+  int dampedRepeats_ = 0; // damped refinements repeated with every pair exact (picksStand)
   bool pencilCurrent_ = false; // refiner_ holds the pencil and factorization of the last analysis' state
   double target_ = 0;          // the last analysis' shift
   int wanted_ = 0;                // modes for the next analysis besides count_: one above every followed mode

@@ -234,6 +234,50 @@ PetscErrorCode FrequencyTracker::analyze(double t, Vec q, Vec lambda, TrackedMod
   PetscFunctionReturn(0);
 }
 
+std::vector<int> FrequencyTracker::dampedPicks(const TrackedModes &out, const DampedModalResult &dm,
+                                               std::vector<std::vector<double>> *mac)
+{
+  const auto dot = [](const std::vector<double> &a, const std::vector<double> &b) {
+    double d = 0;
+    for (std::size_t i = 0; i < std::min(a.size(), b.size()); ++i) d += a[i] * b[i];
+    return d;
+  };
+  // Each followed mode gets the damped mode of largest MAC against its shape
+  // (rank 0 holds the shapes), a different one each; none found: -1.
+  mac->assign(out.followed.size(), std::vector<double>(dm.shapes.size()));
+  for (std::size_t j = 0; j < out.followed.size(); ++j)
+    for (std::size_t k = 0; k < dm.shapes.size(); ++k) {
+      const std::vector<double> &x = out.followed[j].shape;
+      const double ab = dot(dm.shapes[k], x);
+      (*mac)[j][k] = ab * ab / (dot(dm.shapes[k], dm.shapes[k]) * dot(x, x));
+    }
+  return assignByMac(*mac, 0.0);
+}
+
+PetscErrorCode FrequencyTracker::picksStand(const TrackedModes &out, const DampedModalResult &dm, bool *stand) const
+{
+  // Decided on rank 0 (it holds the shapes) and broadcast, so that every
+  // rank repeats the refinement or none.
+  int ok = 1;
+  PetscMPIInt rank;
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_rank(assembler_.comm(), &rank));
+  if (rank == 0) {
+    std::vector<std::vector<double>> mac;
+    const std::vector<int> picks = dampedPicks(out, dm, &mac);
+    const double exact = dampedRefiner_.tolerance;
+    for (std::size_t j = 0; j < picks.size() && ok; ++j) {
+      const int k = picks[j];
+      if (k < 0 || !(dm.residuals[k] <= exact)) ok = 0;
+      for (std::size_t i = 0; ok && i < dm.residuals.size(); ++i)
+        if (!(dm.residuals[i] <= exact) && mac[j][i] > mac[j][k] - dampedMacMargin) ok = 0;
+    }
+  }
+  PetscCallMPI(MPI_Bcast(&ok, 1, MPI_INT, 0, assembler_.comm()));
+  *stand = ok != 0;
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode FrequencyTracker::analyzeDamped(double t, Vec q, Vec lambda, TrackedModes *out, DampedModalResult *modes)
 {
   DampedModalResult dm;
@@ -246,9 +290,27 @@ PetscErrorCode FrequencyTracker::analyzeDamped(double t, Vec q, Vec lambda, Trac
     DampedRefinementInfo info;
     dampedRefiner_.keepVectors = modes != nullptr;
     dampedRefiner_.pencilScale = refiner_.pencilScale(); // K and M of this state (prepare() above or in analyze())
+    // Only the followed modes' damped counterparts are reported: the other
+    // pairs stop at the provisional tolerance (enough to compare shapes),
+    // unless the caller wants all the modes.
+    dampedRefiner_.needed.clear();
+    if (!modes)
+      for (const FollowedMode &f : out->followed) dampedRefiner_.needed.push_back(f.index);
     if (factored)
       PetscCall(dampedRefiner_.refine(t, q, lambda, refiner_.stiffness(), refiner_.mass(), refiner_.damping(),
                                       refiner_.shiftedSolver(), basis_, found_, &dm, &info, &refined));
+    // The picks must stand with every pair exact: a followed mode must get a
+    // needed pair, and no provisional pair may come within dampedMacMargin of
+    // its MAC (their MAC errors are of the order of their 1e-4 residuals).
+    // Otherwise every pair is refined to the tolerance and picked again.
+    bool stand = true;
+    if (refined && !dampedRefiner_.needed.empty()) PetscCall(picksStand(*out, dm, &stand));
+    if (!stand) {
+      ++dampedRepeats_;
+      dampedRefiner_.needed.clear();
+      PetscCall(dampedRefiner_.refine(t, q, lambda, refiner_.stiffness(), refiner_.mass(), refiner_.damping(),
+                                      refiner_.shiftedSolver(), basis_, found_, &dm, &info, &refined));
+    }
     if (!refined && !dampedFallbackReported_) {
       dampedFallbackReported_ = true;
       PetscCall(PetscPrintf(assembler_.comm(),
@@ -266,21 +328,8 @@ PetscErrorCode FrequencyTracker::analyzeDamped(double t, Vec q, Vec lambda, Trac
   }
   out->damped = true;
   out->dampedRefined = refined;
-  const auto dot = [](const std::vector<double> &a, const std::vector<double> &b) {
-    double d = 0;
-    for (std::size_t i = 0; i < std::min(a.size(), b.size()); ++i) d += a[i] * b[i];
-    return d;
-  };
-  // Each followed mode gets the damped mode of largest MAC against its shape
-  // (rank 0 holds the shapes), a different one each; none found: NaN in the file.
-  std::vector<std::vector<double>> mac(out->followed.size(), std::vector<double>(dm.shapes.size()));
-  for (std::size_t j = 0; j < out->followed.size(); ++j)
-    for (std::size_t k = 0; k < dm.shapes.size(); ++k) {
-      const std::vector<double> &x = out->followed[j].shape;
-      const double ab = dot(dm.shapes[k], x);
-      mac[j][k] = ab * ab / (dot(dm.shapes[k], dm.shapes[k]) * dot(x, x));
-    }
-  const std::vector<int> picks = assignByMac(mac, 0.0);
+  std::vector<std::vector<double>> mac;
+  const std::vector<int> picks = dampedPicks(*out, dm, &mac);
   for (std::size_t j = 0; j < out->followed.size(); ++j) {
     FollowedMode &f = out->followed[j];
     const int k = picks[j];
