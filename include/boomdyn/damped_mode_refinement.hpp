@@ -67,13 +67,15 @@ public:
   // The pairs the caller needs exactly: positions in `modes` of the
   // undamped modes whose damped counterparts must reach `tolerance` (the
   // tracking's followed modes). The other pairs stop as soon as they reach
-  // provisionalTolerance, at the first projection as a rule: enough for
-  // their eigenvalues (error of the order of the squared residual) and for
-  // comparing their shapes by MAC (FrequencyTracker::analyzeDamped), not
-  // for reporting them. Empty, or a position that is not among the `count`
+  // provisionalTolerance: at their first projection in 99 % of the paper
+  // scene's pairs (median residual 1.2e-4, 90 % below 2.5e-4). That is
+  // enough to compare their shapes by MAC (FrequencyTracker::analyzeDamped:
+  // the angle to the exact vector is about residual / relative gap, so the
+  // MAC is off by less than 0.014 for modes 15 % apart in omega^2), not to
+  // report them. Empty, or a position that is not among the `count`
   // oscillating modes: every pair to `tolerance`.
   std::vector<int> needed;
-  double provisionalTolerance = 1e-4;
+  double provisionalTolerance = 1e-3;
   // Fill DampedModalResult::real, imag (tracking without a consumer of the
   // vectors skips their copies).
   bool keepVectors = true;
