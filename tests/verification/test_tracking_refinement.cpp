@@ -223,11 +223,13 @@ void expectDampedRefinementEqualsFullPep(const Scene &scene, double interval, in
           for (std::size_t i = 0; i < x.size(); ++i) xy += x[i] * y[i], xx += x[i] * x[i], yy += y[i] * y[i];
           return xy * xy / (xx * yy);
         };
-        if (converged && dp.shapes.size() == db.shapes.size())
-          for (std::size_t k = 0; k < dp.shapes.size(); ++k) {
+        // The shapes are on rank 0 only.
+        if (converged && dp.residuals.size() == db.residuals.size())
+          for (std::size_t k = 0; k < dp.residuals.size(); ++k) {
             if (dp.residuals[k] <= provisional.tolerance) continue;
             ++provisionalPairs;
-            worstMacError = std::max(worstMacError, std::abs(mac(dp.shapes[k]) - mac(db.shapes[k])));
+            if (k < dp.shapes.size() && k < db.shapes.size())
+              worstMacError = std::max(worstMacError, std::abs(mac(dp.shapes[k]) - mac(db.shapes[k])));
           }
       }
       ++analyses;
