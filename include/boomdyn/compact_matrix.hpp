@@ -41,6 +41,7 @@ public:
 
 private:
   Mat source_ = nullptr;
+  PetscObjectId sourceId_ = -1; // PETSc's object id: unique over the run, unlike the address
   PetscObjectState sourceState_ = -1;
   PetscHandle<Mat> copy_;
   std::vector<PetscInt> rowStart_, cols_; // the copy's compressed rows (it uses these arrays)

@@ -17,13 +17,18 @@ PetscErrorCode CompactMatrix::update(Mat src)
   PetscBool done;
   const PetscScalar *a;
   PetscObjectState state;
+  PetscObjectId id;
   PetscCall(MatGetSize(src, &rows, &columns));
   PetscCall(MatGetNonzeroState(src, &state));
+  // The source by its id, not its address: a matrix made after the last
+  // one was destroyed (a new pattern) may get the same address and, made
+  // and assembled the same way, the same nonzero state and entry count.
+  PetscCall(PetscObjectGetId((PetscObject)src, &id));
   PetscCall(MatGetRowIJ(src, 0, PETSC_FALSE, PETSC_FALSE, &rows, &ia, &ja, &done));
   PetscCheck(done, PETSC_COMM_SELF, PETSC_ERR_PLIB, "CompactMatrix: no compressed rows of the source");
   PetscCall(MatSeqAIJGetArrayRead(src, &a));
   const PetscInt entries = ia[rows];
-  const bool samePositions = copy_ && src == source_ && state == sourceState_ && (PetscInt)kept_.size() == entries;
+  const bool samePositions = copy_ && id == sourceId_ && state == sourceState_ && (PetscInt)kept_.size() == entries;
   // Positions whose values turn zero and nonzero again from one analysis to
   // the next (the paper scene's damping matrix at nearly every analysis)
   // stay in the copy as explicit zeros, up to a sixteenth of its entries:
@@ -60,6 +65,7 @@ PetscErrorCode CompactMatrix::update(Mat src)
     const bool keepOld = samePositions && zeros <= maxZeros;
     copy_.reset(); // before the arrays it uses change
     source_ = src;
+    sourceId_ = id;
     sourceState_ = state;
     kept_.resize(entries);
     rowStart_.resize(rows + 1);
