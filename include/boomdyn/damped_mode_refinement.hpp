@@ -21,6 +21,7 @@
 #include "boomdyn/compact_matrix.hpp"
 #include "boomdyn/damped_eigen_solver.hpp"
 #include "boomdyn/local_block.hpp"
+#include "boomdyn/mode_refinement.hpp"
 #include "boomdyn/petsc_handle.hpp"
 
 #include <complex>
@@ -38,6 +39,9 @@ struct DampedRefinementInfo {
   int iterations = 0;      // projections solved
   int subspace = 0;        // largest dimension of a pair's subspace
   double worstResidual = 0; // max over the reported pairs of ||T(lambda) x|| / ||K x||
+  // Per reported mode (the result's order): refined to the tolerance (or
+  // its round-off floor), not only to provisionalTolerance (`needed`).
+  std::vector<bool> exact;
 };
 
 class DampedModeRefiner {
@@ -83,6 +87,11 @@ public:
   // pencilScale()), so that D is assembled without computing it again;
   // 0: computed (assembleDamping).
   double pencilScale = 0;
+  // Infinity norms of K, D, M (ModeRefiner::stiffnessNorm() etc.) for the
+  // pairs' round-off floors eps (|K| + |l| |D| + |l|^2 |M|) |x| / |K x|: a
+  // pair that stopped improving within floorFactor of its floor is accepted
+  // (roundOffFloor(), mode_refinement.hpp); all 0: computed here.
+  double stiffnessNorm = 0, dampingNorm = 0, massNorm = 0;
 
 private:
   Assembler &assembler_;

@@ -98,7 +98,9 @@ private:
                                       std::vector<std::vector<double>> *mac);
   // Whether the picks of refined damped modes, some provisional, are those
   // of the exact ones (analyzeDamped); collective.
-  PetscErrorCode picksStand(const TrackedModes &out, const DampedModalResult &dm, bool *stand) const;
+  // exact: per damped mode, refined to the tolerance (DampedRefinementInfo).
+  PetscErrorCode picksStand(const TrackedModes &out, const DampedModalResult &dm, const std::vector<bool> &exact,
+                            bool *stand) const;
   // The followed modes at the first analysis (positions in omega2).
   PetscErrorCode firstPicks(double t, const std::vector<double> &omega2, std::vector<int> *picks) const;
 

@@ -20,6 +20,19 @@
 
 namespace boomdyn {
 
+// The round-off floor of a pair's relative residual, DBL_EPSILON * scale /
+// norm: for the symmetric pencil scale = (|A| + |theta| |B|) |x| and norm =
+// |A x| (infinity norms of A, B; 2-norms of vectors), a residual there is a
+// normwise backward error of one unit round-off. The refinements accept a
+// pair whose residual stopped falling within floorFactor (4) of it: on the
+// paper scene (16 elements per boom) the floors lie far below the
+// tolerance 5e-9, but refined the lowest mode's residual stalls at 0.13 to
+// 1.2 of this estimate (1.4e-8 with 64 elements per boom, 2.2e-7 with 128),
+// which no fixed tolerance of 5e-9 accepts: every analysis then fell back
+// to the full solve.
+double roundOffFloor(double scale, double norm);
+constexpr double floorFactor = 4.0;
+
 struct RefinedModes {
   std::vector<double> omega2;              // the `count` lowest Ritz values, ascending
   double worstResidual = 0;                // max of ||A x - w B x|| / ||A x|| over them
@@ -38,7 +51,9 @@ public:
 
   // 5e-9 (was 1e-9): eigenvalue error ~ residual^2 / gap, far below the 1e-8
   // acceptance; 2 % fewer tracking instructions (docs/performance.md).
-  double tolerance = 5e-9; // relative residual every reported pair must reach
+  // Relative residual every reported pair must reach (or, where it stops
+  // falling, within floorFactor of its round-off floor: roundOffFloor()).
+  double tolerance = 5e-9;
   // When the residual stops decreasing (a round-off floor: low modes of the
   // extended booms stall near 1e-9), pairs at or below this are accepted
   // instead of paying a full solve (their eigenvalue error is of the order
@@ -63,6 +78,10 @@ public:
   bool factoredAtLastPrepare() const { return factored_; }
   // The constraint scale sigma of the last prepare()'s pencil (pencilState).
   double pencilScale() const { return sigma_; }
+  // Infinity norms of A, B, D of the last prepare() (round-off floors).
+  double stiffnessNorm() const { return normA_; }
+  double massNorm() const { return normB_; }
+  double dampingNorm() const { return normD_; }
 
 private:
 
@@ -74,6 +93,7 @@ private:
   int pattern_ = -1;
   bool factored_ = false;
   double sigma_ = 0;
+  PetscReal normA_ = 0, normB_ = 0, normD_ = 0;
   LocalBlocks blocks_; // the vectors of the refinement as dense local blocks (local_block.hpp)
 };
 

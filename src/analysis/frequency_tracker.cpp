@@ -254,7 +254,8 @@ std::vector<int> FrequencyTracker::dampedPicks(const TrackedModes &out, const Da
   return assignByMac(*mac, 0.0);
 }
 
-PetscErrorCode FrequencyTracker::picksStand(const TrackedModes &out, const DampedModalResult &dm, bool *stand) const
+PetscErrorCode FrequencyTracker::picksStand(const TrackedModes &out, const DampedModalResult &dm,
+                                            const std::vector<bool> &exact, bool *stand) const
 {
   // Decided on rank 0 (it holds the shapes) and broadcast, so that every
   // rank repeats the refinement or none.
@@ -265,12 +266,11 @@ PetscErrorCode FrequencyTracker::picksStand(const TrackedModes &out, const Dampe
   if (rank == 0) {
     std::vector<std::vector<double>> mac;
     const std::vector<int> picks = dampedPicks(out, dm, &mac);
-    const double exact = dampedRefiner_.tolerance;
     for (std::size_t j = 0; j < picks.size() && ok; ++j) {
       const int k = picks[j];
-      if (k < 0 || !(dm.residuals[k] <= exact)) ok = 0;
-      for (std::size_t i = 0; ok && i < dm.residuals.size(); ++i)
-        if (!(dm.residuals[i] <= exact) && mac[j][i] > mac[j][k] - dampedMacMargin) ok = 0;
+      if (k < 0 || !exact[k]) ok = 0;
+      for (std::size_t i = 0; ok && i < exact.size(); ++i)
+        if (!exact[i] && mac[j][i] > mac[j][k] - dampedMacMargin) ok = 0;
     }
   }
   PetscCallMPI(MPI_Bcast(&ok, 1, MPI_INT, 0, assembler_.comm()));
@@ -290,6 +290,9 @@ PetscErrorCode FrequencyTracker::analyzeDamped(double t, Vec q, Vec lambda, Trac
     DampedRefinementInfo info;
     dampedRefiner_.keepVectors = modes != nullptr;
     dampedRefiner_.pencilScale = refiner_.pencilScale(); // K and M of this state (prepare() above or in analyze())
+    dampedRefiner_.stiffnessNorm = refiner_.stiffnessNorm();
+    dampedRefiner_.dampingNorm = refiner_.dampingNorm();
+    dampedRefiner_.massNorm = refiner_.massNorm();
     // Only the followed modes' damped counterparts are reported: the other
     // pairs stop at the provisional tolerance (enough to compare shapes),
     // unless the caller wants all the modes.
@@ -305,7 +308,7 @@ PetscErrorCode FrequencyTracker::analyzeDamped(double t, Vec q, Vec lambda, Trac
     // DampedModeRefiner::provisionalTolerance).
     // Otherwise every pair is refined to the tolerance and picked again.
     bool stand = true;
-    if (refined && !dampedRefiner_.needed.empty()) PetscCall(picksStand(*out, dm, &stand));
+    if (refined && !dampedRefiner_.needed.empty()) PetscCall(picksStand(*out, dm, info.exact, &stand));
     if (!stand) {
       ++dampedRepeats_;
       dampedRefiner_.needed.clear();

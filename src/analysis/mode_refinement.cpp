@@ -6,9 +6,15 @@
 #include <Eigen/Dense>
 
 #include <algorithm>
+#include <cfloat>
 #include <cmath>
 
 namespace boomdyn {
+
+double roundOffFloor(double scale, double norm)
+{
+  return norm > 0 ? DBL_EPSILON * scale / norm : 0.0;
+}
 
 PetscErrorCode ModeRefiner::prepare(double t, Vec q, Vec lambda, double target, bool *factored)
 {
@@ -38,6 +44,11 @@ PetscErrorCode ModeRefiner::prepare(double t, Vec q, Vec lambda, double target, 
   PetscCall(Ac_.update(A_));
   PetscCall(Bc_.update(B_));
   if (withDamping) PetscCall(Dc_.update(D_));
+  // The scales of the round-off floors of the refinements' residuals.
+  PetscCall(MatNorm(Ac_.get(), NORM_INFINITY, &normA_));
+  PetscCall(MatNorm(Bc_.get(), NORM_INFINITY, &normB_));
+  normD_ = 0;
+  if (withDamping) PetscCall(MatNorm(Dc_.get(), NORM_INFINITY, &normD_));
   // A, B and S share one exact pattern (Assembler::createMatrix): the copy and
   // the update keep S's nonzero state, so the factorization below is numeric only.
   if (!S_) PetscCall(MatDuplicate(A_, MAT_COPY_VALUES, S_.address()));
@@ -75,7 +86,7 @@ PetscErrorCode ModeRefiner::refine(double t, Vec q, Vec lambda, double target, i
   for (int j = 0; j < m; ++j) PetscCall(blocks_.fromVec(basis[j], V.col(j).data()));
   PetscCall(blocks_.multiply(Bc_.get(), V, BV));
   Eigen::MatrixXd GA, GB;
-  Eigen::VectorXd an, rn;
+  Eigen::VectorXd an, rn, xn;
   bool solved = true;
   // Leading wanted Ritz vectors that met the tolerance ("soft locking"):
   // they enter the next subspace as they are, with their products, instead
@@ -84,6 +95,8 @@ PetscErrorCode ModeRefiner::refine(double t, Vec q, Vec lambda, double target, i
   // others and the guard vectors iterate as before, and every reported pair
   // is tested again at each iteration.
   int locked = 0;
+  double previousExcess = 0;
+  std::vector<double> previous(count, HUGE_VAL); // each pair's residual at the last iteration
   for (int it = 1; it <= maxIterations; ++it) {
     W.leftCols(locked) = V.leftCols(locked);
     AW.leftCols(locked) = AV.leftCols(locked);
@@ -112,14 +125,32 @@ PetscErrorCode ModeRefiner::refine(double t, Vec q, Vec lambda, double target, i
     R.noalias() = AV.leftCols(count) - BV.leftCols(count) * theta.head(count).asDiagonal();
     PetscCall(blocks_.columnNorms(AV.leftCols(count), &an));
     PetscCall(blocks_.columnNorms(R, &rn));
-    double worst = 0;
-    for (int k = 0; k < count; ++k) worst = std::max(worst, an[k] > 0 ? rn[k] / an[k] : 1.0);
+    PetscCall(blocks_.columnNorms(V.leftCols(count), &xn));
+    // A pair is done at `tolerance`, or where its residual stopped falling
+    // (by half in an iteration) within floorFactor of its round-off floor
+    // (refined meshes: roundOffFloor()). Progress is measured by the largest
+    // residual of the pairs not done (`excess`, relative to the tolerance),
+    // so that a pair resting at its floor does not hide the others' progress.
+    double worst = 0, excess = 0;
+    bool floorMet = true;
+    std::vector<double> limit(count); // residual at which each pair counts as done (locking)
+    for (int k = 0; k < count; ++k) {
+      const double r = an[k] > 0 ? rn[k] / an[k] : 1.0;
+      const double floor = roundOffFloor((normA_ + std::abs(theta[k]) * normB_) * xn[k], an[k]);
+      const bool resting = r > 0.5 * previous[k] && r <= floorFactor * floor;
+      previous[k] = r;
+      limit[k] = resting ? std::max(r, tolerance) : tolerance;
+      worst = std::max(worst, r);
+      if (r > limit[k]) excess = std::max(excess, r / tolerance);
+      floorMet = floorMet && r <= std::max(floorTolerance, limit[k]);
+    }
     locked = 0;
-    while (locked < count && an[locked] > 0 && rn[locked] <= tolerance * an[locked]) ++locked;
-    const double before = out->worstResidual;
+    while (locked < count && an[locked] > 0 && rn[locked] <= limit[locked] * an[locked]) ++locked;
+    const double before = previousExcess;
+    previousExcess = excess;
     out->iterations = it;
     out->worstResidual = worst;
-    if (worst <= tolerance) {
+    if (excess == 0.0) {
       out->omega2.assign(theta.data(), theta.data() + count);
       *converged = true;
       break;
@@ -127,8 +158,8 @@ PetscErrorCode ModeRefiner::refine(double t, Vec q, Vec lambda, double target, i
     // Stagnation at a round-off floor (a low mode of a stiff pencil): no use
     // iterating on. Below floorTolerance the pairs are accepted, above it
     // the full solve decides.
-    if (it > 2 && worst > 0.5 * before) {
-      if (worst <= floorTolerance) {
+    if (it > 2 && excess > 0.5 * before) {
+      if (floorMet) {
         out->omega2.assign(theta.data(), theta.data() + count);
         *converged = true;
       }

@@ -16,6 +16,7 @@
 
 #include <slepcsys.h>
 
+#include <cfloat>
 #include <cmath>
 #include <complex>
 
@@ -25,9 +26,12 @@ using namespace boomdyn::testing;
 namespace {
 
 // max over the first `count` basis vectors of ||A x - w B x|| / ||A x||,
-// with A and B assembled afresh at the state.
+// with A and B assembled afresh at the state. *floorExcess (optional): max
+// of that residual over the larger of 1e-8 and floorFactor times the pair's
+// round-off floor eps (|A| + w |B|) |x| / |A x| (infinity norms of A, B),
+// the refinement's acceptance (roundOffFloor).
 double worstEigenResidual(Assembler &assembler, double t, Vec q, Vec lambda, const std::vector<PetscHandle<Vec>> &basis,
-                          const std::vector<double> &omega2)
+                          const std::vector<double> &omega2, double *floorExcess = nullptr)
 {
   PetscHandle<Mat> A, B;
   PetscHandle<Vec> ax, bx;
@@ -36,16 +40,22 @@ double worstEigenResidual(Assembler &assembler, double t, Vec q, Vec lambda, con
   check(assemblePencil(assembler, t, q, lambda, A, B));
   check(VecDuplicate(basis[0], ax.address()));
   check(VecDuplicate(basis[0], bx.address()));
-  double worst = 0;
+  PetscReal na, nb;
+  check(MatNorm(A, NORM_INFINITY, &na));
+  check(MatNorm(B, NORM_INFINITY, &nb));
+  double worst = 0, excess = 0;
   for (std::size_t k = 0; k < omega2.size(); ++k) {
-    PetscReal an, rn;
+    PetscReal an, rn, xn;
     check(MatMult(A, basis[k], ax));
     check(MatMult(B, basis[k], bx));
     check(VecNorm(ax, NORM_2, &an));
+    check(VecNorm(basis[k], NORM_2, &xn));
     check(VecAXPY(ax, -omega2[k], bx));
     check(VecNorm(ax, NORM_2, &rn));
     worst = std::max(worst, rn / an);
+    excess = std::max(excess, rn / an / std::max(1e-8, floorFactor * DBL_EPSILON * (na + omega2[k] * nb) * xn / an));
   }
+  if (floorExcess) *floorExcess = excess;
   return worst;
 }
 
@@ -103,12 +113,74 @@ TEST(TrackingRefinement, EqualsFullSolveAlongExtraction)
   EXPECT_LT(worstResidual, 1e-8);
 }
 
+// Refined meshes (issue 18, eleventh round): with 64 elements per boom the
+// lowest mode's relative residual stalls at its round-off floor, 1.4e-8 on
+// the paper scene, above any fixed tolerance of 5e-9, and every analysis
+// fell back to the full solve. A pair whose residual stopped falling within
+// floorFactor of its floor is now accepted (roundOffFloor): the refinement
+// must carry the analyses, the frequencies equal the full solve's to 1e-8,
+// and every refined residual, against matrices assembled here, stays within
+// 1e-8 or floorFactor times its floor.
+TEST(TrackingRefinement, RefinedMeshCarriesTheAnalysesAtTheRoundOffFloor)
+{
+  Scene scene = shortenedExtraction(0.2);
+  for (auto &b : scene.bodies) b.elements = 64;
+  HandIntegration run(scene);
+  Assembler &assembler = run.assembler;
+  GeneralizedAlpha &integrator = *run.integrator;
+  const int count = scene.tracking.count;
+  FrequencyTracker full(assembler, count, true), refined(assembler, count);
+  int analyses = 0, refinedAnalyses = 0, differentPick = 0;
+  double worstFrequency = 0, worstResidual = 0, worstExcess = 0;
+  double next = 0.0;
+  auto onStep = [&](const StepInfo &s) -> PetscErrorCode {
+    PetscFunctionBeginUser;
+    if (s.t >= next - 1e-9) {
+      TrackedModes a, b;
+      PetscCall(full.analyze(s.t, integrator.positions(), integrator.multipliers(), &a));
+      PetscCall(refined.analyze(s.t, integrator.positions(), integrator.multipliers(), &b));
+      ++analyses;
+      differentPick += a.index != b.index;
+      for (int k = 0; k < count; ++k)
+        worstFrequency = std::max(worstFrequency, std::abs(a.frequencyHz[k] - b.frequencyHz[k]) / a.frequencyHz[k]);
+      if (b.refined) {
+        ++refinedAnalyses;
+        std::vector<double> omega2;
+        for (double f : b.frequencyHz) omega2.push_back(std::pow(2 * M_PI * f, 2));
+        double excess;
+        worstResidual = std::max(worstResidual, worstEigenResidual(assembler, s.t, integrator.positions(),
+                                                                   integrator.multipliers(), refined.basis(), omega2,
+                                                                   &excess));
+        worstExcess = std::max(worstExcess, excess);
+      }
+      next += 0.01;
+    }
+    PetscFunctionReturn(0);
+  };
+  RunSummary summary;
+  check(integrate(integrator, scene.dynamic, onStep, &summary));
+  EXPECT_TRUE(summary.completed);
+  PetscPrintf(PETSC_COMM_WORLD,
+              "  64 elements per boom: %d analyses, %d refined; frequencies vs full solve: max relative difference "
+              "%.2e; different MAC pick: %d; worst refined eigen-residual %.2e, %.2f of max(1e-8, 4 times its floor)\n",
+              analyses, refinedAnalyses, worstFrequency, differentPick, worstResidual, worstExcess);
+  EXPECT_GE(analyses, 20);
+  EXPECT_GE(refinedAnalyses, analyses * 8 / 10) << "refinement must carry the analyses, not the fallback";
+  EXPECT_GT(worstResidual, 5e-9) << "the mesh must be fine enough that a floor lies above the tolerance";
+  EXPECT_LT(worstFrequency, 1e-8);
+  EXPECT_EQ(differentPick, 0);
+  EXPECT_LE(worstExcess, 1.0);
+}
+
 namespace {
 
 // max over the modes of ||T(lambda) x|| / ||K x||, T(lambda) = lambda^2 M +
 // lambda D + K assembled afresh at the state, x = real + i imag,
-// lambda = -zeta omega + i omega_d.
-double worstDampedResidual(Assembler &assembler, double t, Vec q, Vec lambda, const DampedModalResult &modes)
+// lambda = -zeta omega + i omega_d. *floorExcess: max of that residual over
+// the larger of 1e-8 and floorFactor times the pair's round-off floor
+// eps (|K| + |l| |D| + |l|^2 |M|) |x| / |K x| (infinity norms of K, D, M).
+double worstDampedResidual(Assembler &assembler, double t, Vec q, Vec lambda, const DampedModalResult &modes,
+                           double *floorExcess)
 {
   PetscHandle<Mat> K, D, M;
   PetscHandle<Vec> kr, ki, dr, di, mr, mi;
@@ -119,9 +191,16 @@ double worstDampedResidual(Assembler &assembler, double t, Vec q, Vec lambda, co
   check(assembleDamping(assembler, t, q, lambda, D));
   for (Vec *v : {kr.address(), ki.address(), dr.address(), di.address(), mr.address(), mi.address()})
     check(MatCreateVecs(K, v, nullptr));
-  double worst = 0;
+  PetscReal nK, nD, nM;
+  check(MatNorm(K, NORM_INFINITY, &nK));
+  check(MatNorm(D, NORM_INFINITY, &nD));
+  check(MatNorm(M, NORM_INFINITY, &nM));
+  double worst = 0, excess = 0;
   for (std::size_t k = 0; k < modes.real.size(); ++k) {
     const std::complex<double> l(-modes.dampingRatio[k] * modes.omega[k], modes.dampedOmega[k]), l2 = l * l;
+    PetscReal xr, xi;
+    check(VecNorm(modes.real[k], NORM_2, &xr));
+    check(VecNorm(modes.imag[k], NORM_2, &xi));
     check(MatMult(K, modes.real[k], kr));
     check(MatMult(K, modes.imag[k], ki));
     check(MatMult(D, modes.real[k], dr));
@@ -142,8 +221,13 @@ double worstDampedResidual(Assembler &assembler, double t, Vec q, Vec lambda, co
     check(VecAXPY(ki, l2.imag(), mr));
     check(VecNorm(kr, NORM_2, &rnr));
     check(VecNorm(ki, NORM_2, &rni));
-    worst = std::max(worst, std::hypot(rnr, rni) / std::hypot(knr, kni));
+    const double r = std::hypot(rnr, rni) / std::hypot(knr, kni);
+    const double floor = DBL_EPSILON * (nK + std::abs(l) * nD + std::norm(l) * nM) * std::hypot(xr, xi) /
+                         std::hypot(knr, kni);
+    worst = std::max(worst, r);
+    excess = std::max(excess, r / std::max(1e-8, floorFactor * floor));
   }
+  *floorExcess = excess;
   return worst;
 }
 
@@ -158,8 +242,10 @@ namespace {
 
 // The damped refinement against the full PEP solve at every analysis, on
 // the same states every `interval` along `scene`: the same modes to 1e-8,
-// the same followed damped mode, refined residuals below 1e-8.
-void expectDampedRefinementEqualsFullPep(const Scene &scene, double interval, int minimumAnalyses)
+// the same followed damped mode, refined residuals below 1e-8 or, on a
+// refined mesh (`floors`), below floorFactor times their round-off floors
+// where that is higher.
+void expectDampedRefinementEqualsFullPep(const Scene &scene, double interval, int minimumAnalyses, bool floors = false)
 {
   HandIntegration run(scene);
   ASSERT_TRUE(run.model.hasPhysicalDamping()) << "the scene must be damped for this test";
@@ -178,7 +264,7 @@ void expectDampedRefinementEqualsFullPep(const Scene &scene, double interval, in
   DampedModeRefiner provisional(assembler);
   provisional.keepVectors = false;
   int analyses = 0, refinedAnalyses = 0, differentPick = 0, differentCount = 0, provisionalPairs = 0;
-  double worstOmega = 0, worstZeta = 0, worstResidual = 0, worstFollowed = 0, worstMacError = 0;
+  double worstOmega = 0, worstZeta = 0, worstResidual = 0, worstFollowed = 0, worstMacError = 0, worstExcess = 0;
   double next = 0.0;
   auto onStep = [&](const StepInfo &s) -> PetscErrorCode {
     PetscFunctionBeginUser;
@@ -226,7 +312,7 @@ void expectDampedRefinementEqualsFullPep(const Scene &scene, double interval, in
         // The shapes are on rank 0 only.
         if (converged && dp.residuals.size() == db.residuals.size())
           for (std::size_t k = 0; k < dp.residuals.size(); ++k) {
-            if (dp.residuals[k] <= provisional.tolerance) continue;
+            if (info.exact[k]) continue;
             ++provisionalPairs;
             if (k < dp.shapes.size() && k < db.shapes.size())
               worstMacError = std::max(worstMacError, std::abs(mac(dp.shapes[k]) - mac(db.shapes[k])));
@@ -245,8 +331,10 @@ void expectDampedRefinementEqualsFullPep(const Scene &scene, double interval, in
       differentPick += std::abs(a.trackedDampedHz - b.trackedDampedHz) > 1e-8 * a.trackedDampedHz;
       if (b.dampedRefined) {
         ++refinedAnalyses;
+        double excess;
         worstResidual = std::max(worstResidual, worstDampedResidual(assembler, s.t, integrator.positions(),
-                                                                    integrator.multipliers(), db));
+                                                                    integrator.multipliers(), db, &excess));
+        worstExcess = std::max(worstExcess, excess);
       }
       next += interval;
     }
@@ -258,8 +346,9 @@ void expectDampedRefinementEqualsFullPep(const Scene &scene, double interval, in
   PetscPrintf(PETSC_COMM_WORLD,
               "  %d analyses, %d damped refined; against the full PEP solve: omega_d max relative difference %.2e, "
               "zeta %.2e; different mode count %d, different MAC pick %d; worst refined ||T(lambda) x|| / ||K x|| "
-              "%.2e\n",
-              analyses, refinedAnalyses, worstOmega, worstZeta, differentCount, differentPick, worstResidual);
+              "%.2e (%.2f of max(1e-8, 4 times its floor))\n",
+              analyses, refinedAnalyses, worstOmega, worstZeta, differentCount, differentPick, worstResidual,
+              worstExcess);
   PetscPrintf(PETSC_COMM_WORLD,
               "  followed pairs only: largest difference of the followed damped values %.2e, repeated with all "
               "pairs %d times (%d with an impossible MAC margin); %d provisional pairs, their MAC against the "
@@ -271,7 +360,8 @@ void expectDampedRefinementEqualsFullPep(const Scene &scene, double interval, in
   EXPECT_EQ(differentPick, 0);
   EXPECT_LT(worstOmega, 1e-8);
   EXPECT_LT(worstZeta, 1e-8);
-  EXPECT_LT(worstResidual, 1e-8);
+  if (floors) EXPECT_LE(worstExcess, 1.0);
+  else EXPECT_LT(worstResidual, 1e-8);
   // Refining only the followed pairs exactly changes no reported value
   // (the same pair, the same subspace, the same arithmetic), and the repeat
   // with all pairs runs when a pick cannot be certified.
@@ -287,6 +377,15 @@ void expectDampedRefinementEqualsFullPep(const Scene &scene, double interval, in
 TEST(TrackingRefinement, DampedEqualsFullPepAlongExtraction)
 {
   expectDampedRefinementEqualsFullPep(shortenedExtraction(0.5), 0.01, 50);
+}
+
+// The same with 64 elements per boom, where pairs rest at round-off floors
+// above the tolerance (TrackingRefinement.RefinedMeshCarriesTheAnalyses...).
+TEST(TrackingRefinement, DampedEqualsFullPepOnARefinedMesh)
+{
+  Scene scene = shortenedExtraction(0.2);
+  for (auto &b : scene.bodies) b.elements = 64;
+  expectDampedRefinementEqualsFullPep(scene, 0.01, 20, true);
 }
 
 // The hoist scene (payload on a rope, damped booms): its lowest mode is the
