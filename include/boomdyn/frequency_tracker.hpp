@@ -96,11 +96,11 @@ private:
   // shape, greedy; -1: none) and the MACs (rank 0: it holds the shapes).
   static std::vector<int> dampedPicks(const TrackedModes &out, const DampedModalResult &dm,
                                       std::vector<std::vector<double>> *mac);
-  // Whether the picks of refined damped modes, some provisional, are those
-  // of the exact ones (analyzeDamped); collective.
-  // exact: per damped mode, refined to the tolerance (DampedRefinementInfo).
-  PetscErrorCode picksStand(const TrackedModes &out, const DampedModalResult &dm, const std::vector<bool> &exact,
-                            bool *stand) const;
+  // Whether the picks (dampedPicks()) of refined damped modes, some
+  // provisional, are those of the exact ones (analyzeDamped); exact: per
+  // damped mode, refined to the tolerance (DampedRefinementInfo). Collective.
+  PetscErrorCode picksStand(const std::vector<std::vector<double>> &mac, const std::vector<int> &picks,
+                            const std::vector<bool> &exact, bool *stand) const;
   // The followed modes at the first analysis (positions in omega2).
   PetscErrorCode firstPicks(double t, const std::vector<double> &omega2, std::vector<int> *picks) const;
 

@@ -51,17 +51,15 @@ public:
   PetscErrorCode refine(double t, Vec q, Vec lambda, double target, int count, std::vector<PetscHandle<Vec>> &basis,
                         RefinedModes *out, bool *converged);
 
-  // 5e-9 (was 1e-9): eigenvalue error ~ residual^2 / gap, far below the 1e-8
-  // acceptance; 2 % fewer tracking instructions (docs/performance.md).
-  // Relative residual every reported pair must reach (or, where it stops
-  // falling, within floorFactor of its round-off floor: roundOffFloor()).
+  // Relative residual every reported pair must reach, or, where it stops
+  // falling, within floorFactor of its round-off floor (roundOffFloor()).
+  // 5e-9 (was 1e-9): the eigenvalue error is of the order of residual^2 /
+  // gap, far below the 1e-8 acceptance, and 2 % fewer tracking instructions
+  // (docs/performance.md); half the 1e-8 the tests demand, because the
+  // residual recomputed from the final vectors differs by about the floor.
+  // When the residuals stop falling with a pair above both, the full solve
+  // runs.
   double tolerance = 5e-9;
-  // When the residual stops decreasing (a round-off floor: low modes of the
-  // extended booms stall near 1e-9), pairs at or below this are accepted
-  // instead of paying a full solve (their eigenvalue error is of the order
-  // of the squared residual). Half the 1e-8 the tests demand: recomputed
-  // from the final vectors the residual differs by about the floor.
-  double floorTolerance = 5e-9;
   int maxIterations = 10;
   // Assemble the damping matrix D with A and B in prepare() (one pass over
   // the items, Assembler::evaluatePencil), for the damped refinement.

@@ -429,7 +429,8 @@ PetscErrorCode DampedModeRefiner::refine(double t, Vec q, Vec lambda, Mat K, Mat
     int projected = 0;
     RitzPair ritz;
     bool open = true;           // still iterating
-    double limit = 0;           // its tolerance: tolerance, or provisionalTolerance (needed)
+    bool exact = true;          // needed: to `tolerance`; else to provisionalTolerance
+    double limit = 0;           // that tolerance
     double floor = 0;           // the best iterate's round-off floor (roundOffFloor)
     double best = HUGE_VAL;     // residual of the best iterate
     Block x;                    // its vector (real, imaginary part)
@@ -461,9 +462,10 @@ PetscErrorCode DampedModeRefiner::refine(double t, Vec q, Vec lambda, Mat K, Mat
   // Which pairs go to `tolerance`: the needed ones, or all.
   bool all = needed.empty();
   for (int k : needed) all = all || std::find(wanted.begin(), wanted.end(), k) == wanted.end();
-  for (int j = 0; j < (int)pairs.size(); ++j)
-    pairs[j].limit = all || std::find(needed.begin(), needed.end(), wanted[j]) != needed.end() ? tolerance
-                                                                                              : provisionalTolerance;
+  for (int j = 0; j < (int)pairs.size(); ++j) {
+    pairs[j].exact = all || std::find(needed.begin(), needed.end(), wanted[j]) != needed.end();
+    pairs[j].limit = pairs[j].exact ? tolerance : provisionalTolerance;
+  }
 
   int rounds = 0, largest = m0;
   for (int it = 1; ok && it <= maxIterations; ++it) {
@@ -573,7 +575,7 @@ PetscErrorCode DampedModeRefiner::refine(double t, Vec q, Vec lambda, Mat K, Mat
   double worst = 0, missed = 0;
   bool met = !pairs.empty();
   for (const Pair &pr : pairs) {
-    if (pr.limit == tolerance) worst = std::max(worst, pr.best);
+    if (pr.exact) worst = std::max(worst, pr.best);
     if (!(pr.best <= std::max(pr.limit, floorFactor * pr.floor))) met = false, missed = std::max(missed, pr.best);
   }
   info->iterations = rounds;
@@ -601,7 +603,7 @@ PetscErrorCode DampedModeRefiner::refine(double t, Vec q, Vec lambda, Mat K, Mat
       PetscCall(blocks_.toVec(pr.x.col(0).data(), xr));
       PetscCall(blocks_.toVec(pr.x.col(1).data(), xi));
       PetscCall(appendDampedMode(assembler_, pr.ritz.lambda, xr, xi, pr.best, keepVectors, result));
-      info->exact.push_back(pr.limit == tolerance);
+      info->exact.push_back(pr.exact);
     }
     *converged = true;
   }

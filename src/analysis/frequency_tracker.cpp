@@ -254,25 +254,22 @@ std::vector<int> FrequencyTracker::dampedPicks(const TrackedModes &out, const Da
   return assignByMac(*mac, 0.0);
 }
 
-PetscErrorCode FrequencyTracker::picksStand(const TrackedModes &out, const DampedModalResult &dm,
+PetscErrorCode FrequencyTracker::picksStand(const std::vector<std::vector<double>> &mac, const std::vector<int> &picks,
                                             const std::vector<bool> &exact, bool *stand) const
 {
-  // Decided on rank 0 (it holds the shapes) and broadcast, so that every
-  // rank repeats the refinement or none.
+  // Decided on rank 0 (it holds the shapes, so the MACs) and broadcast, so
+  // that every rank repeats the refinement or none.
   int ok = 1;
   PetscMPIInt rank;
   PetscFunctionBeginUser;
   PetscCallMPI(MPI_Comm_rank(assembler_.comm(), &rank));
-  if (rank == 0) {
-    std::vector<std::vector<double>> mac;
-    const std::vector<int> picks = dampedPicks(out, dm, &mac);
+  if (rank == 0)
     for (std::size_t j = 0; j < picks.size() && ok; ++j) {
       const int k = picks[j];
       if (k < 0 || !exact[k]) ok = 0;
       for (std::size_t i = 0; ok && i < exact.size(); ++i)
         if (!exact[i] && mac[j][i] > mac[j][k] - dampedMacMargin) ok = 0;
     }
-  }
   PetscCallMPI(MPI_Bcast(&ok, 1, MPI_INT, 0, assembler_.comm()));
   *stand = ok != 0;
   PetscFunctionReturn(0);
@@ -282,6 +279,9 @@ PetscErrorCode FrequencyTracker::analyzeDamped(double t, Vec q, Vec lambda, Trac
 {
   DampedModalResult dm;
   bool refined = false;
+  std::vector<std::vector<double>> mac;
+  std::vector<int> picks;
+  bool picked = false; // mac and picks are those of dm
   PetscFunctionBeginUser;
   if (!fullSolve_ && !basis_.empty()) {
     bool factored = pencilCurrent_;
@@ -308,9 +308,14 @@ PetscErrorCode FrequencyTracker::analyzeDamped(double t, Vec q, Vec lambda, Trac
     // DampedModeRefiner::provisionalTolerance).
     // Otherwise every pair is refined to the tolerance and picked again.
     bool stand = true;
-    if (refined && !dampedRefiner_.needed.empty()) PetscCall(picksStand(*out, dm, info.exact, &stand));
+    if (refined && !dampedRefiner_.needed.empty()) {
+      picks = dampedPicks(*out, dm, &mac);
+      picked = true;
+      PetscCall(picksStand(mac, picks, info.exact, &stand));
+    }
     if (!stand) {
       ++dampedRepeats_;
+      picked = false;
       dampedRefiner_.needed.clear();
       PetscCall(dampedRefiner_.refine(t, q, lambda, refiner_.stiffness(), refiner_.mass(), refiner_.damping(),
                                       refiner_.shiftedSolver(), basis_, found_, &dm, &info, &refined));
@@ -332,8 +337,7 @@ PetscErrorCode FrequencyTracker::analyzeDamped(double t, Vec q, Vec lambda, Trac
   }
   out->damped = true;
   out->dampedRefined = refined;
-  std::vector<std::vector<double>> mac;
-  const std::vector<int> picks = dampedPicks(*out, dm, &mac);
+  if (!picked) picks = dampedPicks(*out, dm, &mac);
   for (std::size_t j = 0; j < out->followed.size(); ++j) {
     FollowedMode &f = out->followed[j];
     const int k = picks[j];

@@ -132,7 +132,6 @@ PetscErrorCode ModeRefiner::refine(double t, Vec q, Vec lambda, double target, i
     // residual of the pairs not done (`excess`, relative to the tolerance),
     // so that a pair resting at its floor does not hide the others' progress.
     double worst = 0, excess = 0;
-    bool floorMet = true;
     std::vector<double> limit(count); // residual at which each pair counts as done (locking)
     for (int k = 0; k < count; ++k) {
       const double r = an[k] > 0 ? rn[k] / an[k] : 1.0;
@@ -142,7 +141,6 @@ PetscErrorCode ModeRefiner::refine(double t, Vec q, Vec lambda, double target, i
       limit[k] = resting ? std::max(r, tolerance) : tolerance;
       worst = std::max(worst, r);
       if (r > limit[k]) excess = std::max(excess, r / tolerance);
-      floorMet = floorMet && r <= std::max(floorTolerance, limit[k]);
     }
     locked = 0;
     while (locked < count && an[locked] > 0 && rn[locked] <= limit[locked] * an[locked]) ++locked;
@@ -155,16 +153,9 @@ PetscErrorCode ModeRefiner::refine(double t, Vec q, Vec lambda, double target, i
       *converged = true;
       break;
     }
-    // Stagnation at a round-off floor (a low mode of a stiff pencil): no use
-    // iterating on. Below floorTolerance the pairs are accepted, above it
-    // the full solve decides.
-    if (it > 2 && excess > 0.5 * before) {
-      if (floorMet) {
-        out->omega2.assign(theta.data(), theta.data() + count);
-        *converged = true;
-      }
-      break;
-    }
+    // Stagnation of a pair above both its tolerance and its floor: no use
+    // iterating on, the full solve decides.
+    if (it > 2 && excess > 0.5 * before) break;
   }
   for (int j = 0; j < m; ++j) PetscCall(blocks_.toVec(V.col(j).data(), basis[j]));
   PetscCall(PetscLogEventEnd(logEvents().eigen, 0, 0, 0, 0));
