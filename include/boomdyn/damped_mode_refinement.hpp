@@ -87,11 +87,12 @@ public:
   // pencilScale()), so that D is assembled without computing it again;
   // 0: computed (assembleDamping).
   double pencilScale = 0;
-  // Infinity norms of K, D, M (ModeRefiner::stiffnessNorm() etc.) for the
-  // pairs' round-off floors eps (|K| + |l| |D| + |l|^2 |M|) |x| / |K x|: a
-  // pair that stopped improving within floorFactor of its floor is accepted
-  // (roundOffFloor(), mode_refinement.hpp); all 0: computed here.
-  double stiffnessNorm = 0, dampingNorm = 0, massNorm = 0;
+  // Infinity norms of K, D, M (ModeRefiner::norms() of the same pencil) for
+  // the pairs' round-off floors eps (|K| + |l| |D| + |l|^2 |M|) |x| / |K x|:
+  // a pair that stopped improving within floorFactor of its floor is
+  // accepted (roundOffFloor(), mode_refinement.hpp); null: taken here.
+  // Asked for only when a pair missed its tolerance.
+  PencilNorms *norms = nullptr;
 
 private:
   Assembler &assembler_;

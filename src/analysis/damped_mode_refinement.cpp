@@ -358,12 +358,9 @@ PetscErrorCode DampedModeRefiner::refine(double t, Vec q, Vec lambda, Mat K, Mat
     D = Dc_.get();
   }
   if (!blocks_.ready()) PetscCall(blocks_.setUp(modes[0]));
-  PetscReal nK = stiffnessNorm, nD = dampingNorm, nM = massNorm;
-  if (nK == 0 && nD == 0 && nM == 0) {
-    PetscCall(MatNorm(K, NORM_INFINITY, &nK));
-    PetscCall(MatNorm(D, NORM_INFINITY, &nD));
-    PetscCall(MatNorm(M, NORM_INFINITY, &nM));
-  }
+  PencilNorms ownNorms;
+  PencilNorms *pencilNorms = norms;
+  if (!pencilNorms) ownNorms.set(K, M, D), pencilNorms = &ownNorms;
   const PetscInt n = blocks_.localSize(), nq = assembler_.model().numCoordinates();
   MultiplierFit multipliers;
   PetscCall(multipliers.setUp(K, blocks_, nq, assembler_.model().numMultipliers()));
@@ -431,7 +428,10 @@ PetscErrorCode DampedModeRefiner::refine(double t, Vec q, Vec lambda, Mat K, Mat
     bool open = true;           // still iterating
     bool exact = true;          // needed: to `tolerance`; else to provisionalTolerance
     double limit = 0;           // that tolerance
-    double floor = 0;           // the best iterate's round-off floor (roundOffFloor)
+    // The best iterate's |lambda|, |x| and |K x|, for its round-off floor
+    // (roundOffFloor), taken only if the pair misses its tolerance.
+    std::complex<double> bestLambda = 0;
+    double bestX = 0, bestKx = 0;
     double best = HUGE_VAL;     // residual of the best iterate
     Block x;                    // its vector (real, imaginary part)
     Eigen::MatrixXd a;          // its fitted multipliers
@@ -535,7 +535,6 @@ PetscErrorCode DampedModeRefiner::refine(double t, Vec q, Vec lambda, Mat K, Mat
       const double residual = knorm > 0 ? std::hypot(rn[0], rn[1]) / knorm : 1.0;
       // |x|: V y with orthonormal V and |y| = 1, and the fitted multipliers.
       const double xnorm = std::sqrt(pr.ritz.y.squaredNorm() + a.squaredNorm());
-      const double floor = roundOffFloor((nK + std::abs(l) * nD + std::norm(l) * nM) * xnorm, knorm);
       if (residual < pr.best) {
         // The best iterate so far: past the round-off floor of the residual
         // (about 1e-9 on the paper scene) further expansions are noise and
@@ -544,7 +543,7 @@ PetscErrorCode DampedModeRefiner::refine(double t, Vec q, Vec lambda, Mat K, Mat
         pr.x.resize(n, 2);
         LocalBlocks::combine(sub.V.leftCols(sub.p), Y, pr.x);
         pr.a = a;
-        pr.floor = floor;
+        pr.bestLambda = l, pr.bestX = xnorm, pr.bestKx = knorm;
       }
       pr.ritz.converged = residual <= pr.limit;
       // Converged, past the round-off floor (the residual grew), or out of
@@ -576,7 +575,14 @@ PetscErrorCode DampedModeRefiner::refine(double t, Vec q, Vec lambda, Mat K, Mat
   bool met = !pairs.empty();
   for (const Pair &pr : pairs) {
     if (pr.exact) worst = std::max(worst, pr.best);
-    if (!(pr.best <= std::max(pr.limit, floorFactor * pr.floor))) met = false, missed = std::max(missed, pr.best);
+    if (pr.best <= pr.limit) continue;
+    PetscReal nK = 0, nD = 0, nM = 0;
+    PetscCall(pencilNorms->stiffness(&nK));
+    PetscCall(pencilNorms->damping(&nD));
+    PetscCall(pencilNorms->mass(&nM));
+    const std::complex<double> l = pr.bestLambda;
+    const double floor = roundOffFloor((nK + std::abs(l) * nD + std::norm(l) * nM) * pr.bestX, pr.bestKx);
+    if (!(pr.best <= floorFactor * floor)) met = false, missed = std::max(missed, pr.best);
   }
   info->iterations = rounds;
   info->subspace = largest;

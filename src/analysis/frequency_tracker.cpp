@@ -290,9 +290,7 @@ PetscErrorCode FrequencyTracker::analyzeDamped(double t, Vec q, Vec lambda, Trac
     DampedRefinementInfo info;
     dampedRefiner_.keepVectors = modes != nullptr;
     dampedRefiner_.pencilScale = refiner_.pencilScale(); // K and M of this state (prepare() above or in analyze())
-    dampedRefiner_.stiffnessNorm = refiner_.stiffnessNorm();
-    dampedRefiner_.dampingNorm = refiner_.dampingNorm();
-    dampedRefiner_.massNorm = refiner_.massNorm();
+    dampedRefiner_.norms = &refiner_.norms();
     // Only the followed modes' damped counterparts are reported: the other
     // pairs stop at the provisional tolerance (enough to compare shapes),
     // unless the caller wants all the modes.

@@ -16,6 +16,23 @@ double roundOffFloor(double scale, double norm)
   return norm > 0 ? DBL_EPSILON * scale / norm : 0.0;
 }
 
+void PencilNorms::set(Mat K, Mat M, Mat D)
+{
+  mats_[0] = K, mats_[1] = M, mats_[2] = D;
+  values_[0] = values_[1] = values_[2] = -1;
+}
+
+PetscErrorCode PencilNorms::get(int which, PetscReal *v)
+{
+  PetscFunctionBeginUser;
+  if (values_[which] < 0) {
+    values_[which] = 0;
+    if (mats_[which]) PetscCall(MatNorm(mats_[which], NORM_INFINITY, &values_[which]));
+  }
+  *v = values_[which];
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode ModeRefiner::prepare(double t, Vec q, Vec lambda, double target, bool *factored)
 {
   PetscFunctionBeginUser;
@@ -45,10 +62,7 @@ PetscErrorCode ModeRefiner::prepare(double t, Vec q, Vec lambda, double target, 
   PetscCall(Bc_.update(B_));
   if (withDamping) PetscCall(Dc_.update(D_));
   // The scales of the round-off floors of the refinements' residuals.
-  PetscCall(MatNorm(Ac_.get(), NORM_INFINITY, &normA_));
-  PetscCall(MatNorm(Bc_.get(), NORM_INFINITY, &normB_));
-  normD_ = 0;
-  if (withDamping) PetscCall(MatNorm(Dc_.get(), NORM_INFINITY, &normD_));
+  norms_.set(Ac_.get(), Bc_.get(), withDamping ? Dc_.get() : nullptr);
   // A, B and S share one exact pattern (Assembler::createMatrix): the copy and
   // the update keep S's nonzero state, so the factorization below is numeric only.
   if (!S_) PetscCall(MatDuplicate(A_, MAT_COPY_VALUES, S_.address()));
@@ -135,8 +149,13 @@ PetscErrorCode ModeRefiner::refine(double t, Vec q, Vec lambda, double target, i
     std::vector<double> limit(count); // residual at which each pair counts as done (locking)
     for (int k = 0; k < count; ++k) {
       const double r = an[k] > 0 ? rn[k] / an[k] : 1.0;
-      const double floor = roundOffFloor((normA_ + std::abs(theta[k]) * normB_) * xn[k], an[k]);
-      const bool resting = r > 0.5 * previous[k] && r <= floorFactor * floor;
+      bool resting = false;
+      if (r > tolerance && r > 0.5 * previous[k]) { // stopped falling above the tolerance: at its floor?
+        PetscReal normA = 0, normB = 0;
+        PetscCall(norms_.stiffness(&normA));
+        PetscCall(norms_.mass(&normB));
+        resting = r <= floorFactor * roundOffFloor((normA + std::abs(theta[k]) * normB) * xn[k], an[k]);
+      }
       previous[k] = r;
       limit[k] = resting ? std::max(r, tolerance) : tolerance;
       worst = std::max(worst, r);
