@@ -175,19 +175,19 @@ def cmd_lag(directory, step=10):
     for k in analyses(directory)[1::step]:
         p, po = load(directory, k), load(directory, k - 1)
         A, B = p["A"], p["B"]
+        if po["A"].shape != A.shape:
+            continue  # a contact point changed element between the two
         n = A.shape[0]
         dense = A.toarray()
-        nq = n
+        nq = n  # the multiplier rows follow the coordinates, with a zero block
         while nq > 0 and not dense[nq - 1:, nq - 1:].any():
             nq -= 1
         K, M, C = A[:nq, :nq], B[:nq, :nq], A[nq:, :nq].toarray()
-        Ko = po["A"][:nq, :nq] if po["A"].shape == A.shape else None
+        Ko = po["A"][:nq, :nq]
         G = np.linalg.inv(C @ C.T)
         project = lambda X: X - C.T @ (G @ (C @ X))  # noqa: E731
         CT = A[:nq, nq:].toarray()
-        lu_old = spl.splu((po["A"] - po["tau"] * po["B"]).tocsc()) if po["A"].shape == A.shape else None
-        if lu_old is None:
-            continue
+        lu_old = spl.splu((po["A"] - po["tau"] * po["B"]).tocsc())
         Vq = project(p["V"][:nq])
         Q = b_orthonormal([Vq], M)
         count, m = p["count"], p["m"]
