@@ -165,13 +165,10 @@ private:
   DynamicHistory &h_;
 };
 
-inline DynamicHistory runDynamic(const Scene &scene, MPI_Comm comm = PETSC_COMM_WORLD, double errorTolerance = 0,
-                                 bool kinkRestart = true, bool accelerationPredictor = true)
+// A dynamic run with the given options (testOptions() and changes to it).
+inline DynamicHistory runDynamicWith(const Scene &scene, MPI_Comm comm, const SimulationOptions &options)
 {
   DynamicHistory h;
-  SimulationOptions options = testOptions(errorTolerance);
-  options.kinkRestart = kinkRestart;                     // -boom_kink_restart
-  options.accelerationPredictor = accelerationPredictor; // -boom_acceleration_predictor
   Simulation sim(scene, comm, options);
   check(sim.setUp());
   sim.addMonitor(std::make_unique<HistoryRecorder>(sim, h));
@@ -194,6 +191,15 @@ inline DynamicHistory runDynamic(const Scene &scene, MPI_Comm comm = PETSC_COMM_
   h.newton = integrator.newton().statistics();
   h.patternVersion = sim.assembler().patternVersion();
   return h;
+}
+
+inline DynamicHistory runDynamic(const Scene &scene, MPI_Comm comm = PETSC_COMM_WORLD, double errorTolerance = 0,
+                                 bool kinkRestart = true, bool accelerationPredictor = true)
+{
+  SimulationOptions options = testOptions(errorTolerance);
+  options.kinkRestart = kinkRestart;                     // -boom_kink_restart
+  options.accelerationPredictor = accelerationPredictor; // -boom_acceleration_predictor
+  return runDynamicWith(scene, comm, options);
 }
 
 // runDynamic with one boomdyn option set (e.g. "-boom_schur_dd", "1") for

@@ -79,6 +79,11 @@ public:
   // q_n + h v_n + h^2/2 a_n whenever that predicted the last step's
   // solution better than q_n + h v_n (docs/model.md §4.2). Set before initialize().
   void setAccelerationPredictor(bool on) { accelerationPredictor_ = on; }
+  // -boom_filtered_start (default on): the first step after a start or a
+  // restart begins from an algorithmic acceleration a from which the modes
+  // the step cannot resolve (omega h >> 1) are filtered out, instead of
+  // a = qdd (docs/model.md §4.3). Set before initialize().
+  void setFilteredStart(bool on) { filteredStart_ = on; }
   // Impulse of the last velocity projection (N s or N m s) in the
   // multiplier entries, SI units; zero before any.
   Vec lastImpulse() const { return impulse_; }
@@ -110,6 +115,8 @@ private:
   PetscErrorCode projectVelocities();
   // qdd_, a_ and lambda_ from the acceleration-level equations at (t_, q_, v_).
   PetscErrorCode consistentAccelerations();
+  // a_ from qdd_ for the first step of size h after a (re)start (see there).
+  PetscErrorCode filterStartAcceleration(double h, double betaP, double gammaP, double sigma);
   void setAccelerationLevelContext(bool velocityLevel);
   template <class Op>
   PetscErrorCode forFirstOrder(Op op);
@@ -126,6 +133,10 @@ private:
   bool hasDrives_ = false; // some constraint depends on time (its power needs the multipliers)
   bool kinkRestart_ = true;
   bool accelerationPredictor_ = true;
+  bool filteredStart_ = true;
+  // qdd_ holds consistent accelerations of a (re)start that no step has
+  // left yet: the next step filters a_ from them for its own h.
+  bool startPending_ = false;
   // The next step starts from q_n + h v_n + h^2/2 a_n (else q_n + h v_n):
   // chosen after each step by which of the two was closer to its solution.
   bool predictWithAcceleration_ = false;

@@ -24,6 +24,8 @@
 
 #include <petscsnes.h>
 
+#include <functional>
+
 namespace boomdyn {
 
 template <>
@@ -72,6 +74,12 @@ public:
   PetscErrorCode solve(Vec x, PetscInt *iterations, SNESConvergedReason *reason);
   // The next solve starts with a fresh Jacobian.
   void invalidateJacobian() { jacobianValid_ = false; }
+  // One linear solve J y = b with the solver's own matrix (current with the
+  // pattern) and direct solver: `assemble` fills the matrix, which is then
+  // factored in place of the Newton Jacobian (so no second matrix or factor
+  // is held; the next Newton solve builds a fresh Jacobian). *solved is
+  // false when the factorization or the solve failed (a singular matrix).
+  PetscErrorCode solveLinear(const std::function<PetscErrorCode(Mat)> &assemble, Vec b, Vec y, bool *solved);
 
   AssemblyContext ctx; // set by the caller before solve()
   // Subtracted from every residual when not null (set by the caller; the
@@ -92,6 +100,8 @@ private:
                                         SNESConvergedReason *reason, void *self);
   static PetscErrorCode fullStep(SNESLineSearch ls, void *self);
   PetscErrorCode solveOnce(Vec x, PetscInt *iterations, SNESConvergedReason *reason);
+  // After a sliding joint moved to another element: a matrix of the new pattern.
+  PetscErrorCode followPattern();
   static PetscErrorCode factor(SNES snes, Mat J);
   bool sameIterationMatrix(const AssemblyContext &a, const AssemblyContext &b) const;
 

@@ -37,6 +37,7 @@ struct SimulationOptions {
   double adaptiveTolerance = 0;   // local position error per step (0: fixed steps)
   bool kinkRestart = true;        // land on drives' velocity kinks and restart there (docs/model.md §4.8)
   bool accelerationPredictor = true; // Newton's start from q + h v + h^2/2 a when that predicted better (§4.2)
+  bool filteredStart = true; // the first step's a without the modes it cannot resolve (§4.3)
   std::string restartPath;        // continue a dynamic run from this checkpoint
   bool modal = true;              // run the scene's modal analysis (modal: block)
   bool quiet = false;             // no status lines (warnings and events are printed anyway)

@@ -12,8 +12,10 @@ std::string EnergyBalance::update(double t, double h, const EnergyParts &e, doub
   activity_ = std::max(activity_, e.kinetic + std::abs(e.strain));
   // The balance starts after the first step: from a state that is not in
   // equilibrium (loads and gravity switched on at t = 0) generalized-alpha
+  // started from the consistent accelerations (-boom_filtered_start 0)
   // overshoots once in the modes with omega h >> 1, which fine meshes have
-  // many of; that one-time error is not the growth this check is for.
+  // many of; that one-time error is not the growth this check is for. (The
+  // filtered start keeps it at the modes' static energy, docs/model.md §4.3.)
   if (steps_++ < 2) { // the start (h = 0) and the first step
     e0_ = total;
     previousPower_ = e.inputPower;

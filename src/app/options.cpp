@@ -134,6 +134,10 @@ PetscErrorCode readRunOptions(PetscOptionItems *PetscOptionsObject, AppOptions *
                        "Start Newton from q + h v + h^2/2 a whenever that predicted the previous step better than "
                        "q + h v (0: always q + h v)",
                        &o->accelerationPredictor));
+  PetscCall(optionBool(PetscOptionsObject, "-boom_filtered_start",
+                       "Start generalized-alpha (and restart it at kinks) from an algorithmic acceleration without "
+                       "the modes the step cannot resolve (0: a = the consistent accelerations)",
+                       &o->filteredStart));
   PetscCall(optionNumber(PetscOptionsObject, "-boom_checkpoint_interval",
                          "Simulated time between checkpoints (0: only when interrupted)", &o->checkpointInterval));
   o->checkpointPath = withoutExtension(o->outputPath, ".h5") + ".chk.h5";

@@ -25,6 +25,7 @@ struct AppOptions {
   double adaptiveTolerance = 0;  // -boom_adaptive_tol (local position error per step; 0: fixed steps)
   bool kinkRestart = true;       // -boom_kink_restart (restart at drives' velocity kinks)
   bool accelerationPredictor = true; // -boom_acceleration_predictor (Newton's start from h^2/2 a_n when it helps)
+  bool filteredStart = true; // -boom_filtered_start (the first step's a without the unresolved modes)
   double checkpointInterval = 0; // -boom_checkpoint_interval (s of simulated time; 0: only when interrupted)
   std::string checkpointPath;    // -boom_checkpoint (default: output stem + ".chk.h5")
   std::string restartPath;       // -boom_restart: continue a dynamic run from this checkpoint

@@ -100,6 +100,7 @@ PetscErrorCode runScene(const Scene &scene, const AppOptions &opts, int argc, ch
   options.adaptiveTolerance = opts.adaptiveTolerance;
   options.kinkRestart = opts.kinkRestart;
   options.accelerationPredictor = opts.accelerationPredictor;
+  options.filteredStart = opts.filteredStart;
   options.restartPath = opts.restartPath;
   options.quiet = opts.quiet;
   // A scene that is no mechanism is reported by exception (ModelError).

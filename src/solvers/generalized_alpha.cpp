@@ -1,5 +1,6 @@
 #include "boomdyn/generalized_alpha.hpp"
 
+#include "boomdyn/direct_solver.hpp"
 #include "boomdyn/lanes.hpp"
 #include "boomdyn/log_events.hpp"
 
@@ -123,8 +124,10 @@ PetscErrorCode GeneralizedAlpha::consistentAccelerations()
   PetscCall(VecCopy(x_, qdd_));
   PetscCall(VecCopy(x_, a_));
   // Consistent accelerations after a start or a load jump carry the stiff
-  // modes' transients (see advance()): the first step predicts without them.
+  // modes' transients (see advance()): the first step predicts without them,
+  // and starts from a filtered a (filterStartAcceleration).
   predictWithAcceleration_ = false;
+  startPending_ = filteredStart_;
   PetscCall(VecSet(lambda_, 0.0));
   PetscCall(assembler_.copyMultipliers(x_, lambda_, massScale_));
   PetscFunctionReturn(0);
@@ -453,17 +456,129 @@ PetscErrorCode GeneralizedAlpha::estimateAndUpdate(double h, double betaP, doubl
   PetscFunctionReturn(0);
 }
 
+// The algorithmic acceleration of the first step after a start or a
+// restart (docs/model.md §4.3). For one mode of frequency omega started
+// with a_0 = qdd_0 = F/m (a load F switched on, m the modal mass), the
+// first step of §4.2 leaves, as omega h -> inf, q_1 -> F/k (1 - alpha_m)/
+// (2 beta (1 - alpha_f)) (bounded) but the velocity v_1 -> c h a_0 with
+// c = 1 - gamma/(2 beta): a kinetic energy (c omega h)^2 F^2/(2k) that grows
+// without bound with omega h (c = 0 only for rho_inf = 1; 0.0099 for 0.8).
+// On a fine mesh the unresolved modes are many and omega h is large: the
+// first step created 5.9 kJ on the hoist lift-off scene with 160 elements
+// per boom (0.7 J of strain at the start), and Newton could not take the
+// second step of the 512-element cantilever at any h. Filtered, a_0 solves
+//   (M + mu (K_t + gamma' D)/beta') a_0 + C_q^T nu = M qdd_0,   C_q a_0 = C_q qdd_0,
+// with mu = c^2: per mode a_0 = qdd_0 / (1 + mu theta (omega h)^2),
+// theta = beta (1 - alpha_f)/(1 - alpha_m), so the first step's kinetic
+// energy in any mode stays below F^2/(8 theta k) (0.49 F^2/k at rho_inf =
+// 0.8: the size of the mode's static strain energy), and modes with
+// omega h < 1/sqrt(mu theta) (200 at rho_inf = 0.8) keep a_0 = qdd_0 to
+// (omega h)^2 mu theta: an O(h^2) change of the starting value, which keeps
+// the scheme second order (Arnold & Bruls 2007 need a_0 = qdd_0 + O(h)).
+// The matrix is the step's iteration matrix with beta'/mu in place of
+// beta' (an assembly and a factorization per start). The constraints keep
+// the acceleration level of qdd_0, and qdd_ itself stays the consistent
+// acceleration (it enters the step as qdd_n).
+PetscErrorCode GeneralizedAlpha::filterStartAcceleration(double h, double betaP, double gammaP, double sigma)
+{
+  PetscHandle<Vec> w, Mw, Jw, y;
+  PetscInt lo, hi, nq = assembler_.model().numCoordinates();
+  std::vector<PetscInt> firstOrder = assembler_.model().firstOrderCoordinates();
+  std::sort(firstOrder.begin(), firstOrder.end());
+  auto secondOrder = [&](PetscInt g) {
+    return g < nq && !std::binary_search(firstOrder.begin(), firstOrder.end(), g);
+  };
+  const AlphaParameters &p = params_;
+  const double c = 1.0 - p.gamma / (2.0 * p.beta), mu = c * c;
+  PetscFunctionBeginUser;
+  PetscCall(VecCopy(qdd_, a_));
+  if (mu < 1e-12) PetscFunctionReturn(0); // rho_inf = 1: no growth to filter
+  const double massCoefficient = betaP / mu;
+  for (PetscHandle<Vec> *v : {&w, &Mw, &Jw, &y}) PetscCall(assembler_.createVector(v->address()));
+  // w = qdd_0 on the second-order coordinates, 0 elsewhere.
+  PetscCall(VecGetOwnershipRange(w, &lo, &hi));
+  {
+    const PetscScalar *qdd;
+    PetscScalar *wa;
+    PetscCall(VecGetArrayRead(qdd_, &qdd));
+    PetscCall(VecGetArray(w, &wa));
+    for (PetscInt g = lo; g < hi; ++g) wa[g - lo] = secondOrder(g) ? qdd[g - lo] : 0.0;
+    PetscCall(VecRestoreArray(w, &wa));
+    PetscCall(VecRestoreArrayRead(qdd_, &qdd));
+  }
+  // M w: the acceleration-level residual is affine in x (M x - Q + ...).
+  setAccelerationLevelContext(false);
+  PetscCall(assembler_.setOffsets(q_, v_, nullptr));
+  PetscCall(assembler_.evaluate(newton_.ctx, w, Mw, nullptr));
+  PetscCall(assembler_.evaluate(newton_.ctx, zero_, Jw, nullptr));
+  PetscCall(VecAXPY(Mw, -1.0, Jw));
+  // (beta'/mu) M + gamma' D + K_t with its constraint blocks at the start
+  // state: x = [q_0 | lambda_0/sigma] with offsets that give v = v_0 and
+  // qdd = qdd_0 there (z: zdot = 0); constraint rows scaled like the mass.
+  AssemblyContext ctx;
+  ctx.t = t_;
+  ctx.kin = {1.0, gammaP, massCoefficient, 1.0 / h};
+  ctx.sigma = sigma / mu;
+  ctx.rightLimit = true; // the state at t_ has passed any jump at t_
+  ctx.residualWanted = false;
+  PetscCall(VecCopy(q_, x_));
+  PetscCall(assembler_.copyMultipliers(lambda_, x_, mu / sigma));
+  PetscCall(VecWAXPY(vc_, -gammaP, q_, v_));
+  PetscCall(VecWAXPY(ac_, -betaP, q_, qdd_));
+  PetscCall(forFirstOrder([&](PetscInt i, const PetscScalar *q, PetscScalar *vc, PetscScalar *) { vc[i] = -q[i] / h; }));
+  PetscCall(assembler_.setOffsets(nullptr, vc_, ac_));
+  // Right-hand side: the constraint rows of J w, (beta'/mu) M w on the
+  // second-order rows, 0 on the first-order ones. The matrix and its
+  // factorization are the Newton solver's own (no second copy is held; a
+  // singular matrix is left to the step, which reports it, and the start is
+  // then the unfiltered a = qdd).
+  bool solved = false;
+  PetscCall(newton_.solveLinear(
+    [&](Mat J) -> PetscErrorCode {
+      PetscFunctionBeginUser;
+      PetscCall(assembler_.evaluate(ctx, x_, nullptr, J));
+      PetscCall(MatMult(J, w, Jw));
+      const PetscScalar *m;
+      PetscScalar *r;
+      PetscCall(VecGetArrayRead(Mw, &m));
+      PetscCall(VecGetArray(Jw, &r));
+      for (PetscInt g = lo; g < std::min(hi, nq); ++g) r[g - lo] = secondOrder(g) ? massCoefficient * m[g - lo] : 0.0;
+      PetscCall(VecRestoreArray(Jw, &r));
+      PetscCall(VecRestoreArrayRead(Mw, &m));
+      PetscFunctionReturn(0);
+    },
+    Jw, y, &solved));
+  if (!solved) PetscFunctionReturn(0);
+  {
+    const PetscScalar *ya;
+    PetscScalar *a;
+    PetscCall(VecGetArrayRead(y, &ya));
+    PetscCall(VecGetArray(a_, &a));
+    for (PetscInt g = lo; g < std::min(hi, nq); ++g)
+      if (secondOrder(g)) a[g - lo] = ya[g - lo];
+    PetscCall(VecRestoreArray(a_, &a));
+    PetscCall(VecRestoreArrayRead(y, &ya));
+  }
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode GeneralizedAlpha::step(double h, StepResult *result) { return advance(h, t_ + h, result); }
 
 PetscErrorCode GeneralizedAlpha::advance(double h, double tEnd, StepResult *result)
 {
   const AlphaParameters &p = params_;
   PetscFunctionBeginUser;
-  PetscCall(PetscLogEventBegin(logEvents().step, 0, 0, 0, 0));
   const double h2b = h * h * p.beta;
   const double betaP = (1.0 - p.alpha_m) / (h2b * (1.0 - p.alpha_f));
   const double gammaP = p.gamma / (h * p.beta);
   const double sigma = massScale_ * betaP;
+  // Part of the (re)start, like the consistent accelerations: not in BoomStep.
+  if (startPending_) {
+    PetscCall(PetscLogEventBegin(logEvents().start, 0, 0, 0, 0));
+    PetscCall(filterStartAcceleration(h, betaP, gammaP, sigma));
+    PetscCall(PetscLogEventEnd(logEvents().start, 0, 0, 0, 0));
+  }
+  PetscCall(PetscLogEventBegin(logEvents().step, 0, 0, 0, 0));
 
   // A converged solve whose contact points moved to other track elements is
   // redone with the pattern of the elements that hold them (a few times at
@@ -537,7 +652,10 @@ PetscErrorCode GeneralizedAlpha::advance(double h, double tEnd, StepResult *resu
     }
     if (result->converged && mayReject) PetscCall(estimateAndUpdate(h, betaP, gammaP, sigma, true, nullptr));
   }
-  if (result->converged) t_ = tEnd;
+  if (result->converged) {
+    t_ = tEnd;
+    startPending_ = false;
+  }
   PetscCall(PetscLogEventEnd(logEvents().step, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }
@@ -553,6 +671,7 @@ PetscErrorCode GeneralizedAlpha::save(StateWriter &out) const
   out.addScalar("t", t_);
   out.addScalar("impulse_work", impulseWork_);
   out.addScalar("predict_with_acceleration", predictWithAcceleration_ ? 1.0 : 0.0);
+  out.addScalar("start_pending", startPending_ ? 1.0 : 0.0);
   out.addArray("slider_locations", sliders_.locations());
   PetscFunctionReturn(0);
 }
@@ -571,6 +690,10 @@ PetscErrorCode GeneralizedAlpha::restore(const StateReader &in)
   // bitwise (checkpoints from before it predicted without accelerations).
   predictWithAcceleration_ =
     accelerationPredictor_ && in.hasScalar("predict_with_acceleration") && in.scalar("predict_with_acceleration") != 0;
+  // A checkpoint written at a restart (a drive kink) holds a = qdd: the
+  // next step filters it as the run would have (checkpoints from before the
+  // filter continue unfiltered, as they were run).
+  startPending_ = filteredStart_ && in.hasScalar("start_pending") && in.scalar("start_pending") != 0;
   // The joints' elements as they were, not as a fresh search would choose
   // them within the relocation band: restarts continue bitwise.
   PetscCall(sliders_.setLocations(in.array("slider_locations")));

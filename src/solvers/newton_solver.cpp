@@ -167,7 +167,7 @@ bool NewtonSolver::sameIterationMatrix(const AssemblyContext &a, const AssemblyC
          a.constraintBlocks == b.constraintBlocks;
 }
 
-PetscErrorCode NewtonSolver::solve(Vec x, PetscInt *iterations, SNESConvergedReason *reason)
+PetscErrorCode NewtonSolver::followPattern()
 {
   PetscFunctionBeginUser;
   if (patternVersion_ != assembler_->patternVersion()) {
@@ -182,6 +182,36 @@ PetscErrorCode NewtonSolver::solve(Vec x, PetscInt *iterations, SNESConvergedRea
     patternVersion_ = assembler_->patternVersion();
     jacobianValid_ = false;
   }
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode NewtonSolver::solveLinear(const std::function<PetscErrorCode(Mat)> &assemble, Vec b, Vec y,
+                                         bool *solved)
+{
+  KSP ksp;
+  PC pc;
+  KSPConvergedReason kspReason = KSP_DIVERGED_PC_FAILED;
+  PetscFunctionBeginUser;
+  PetscCall(followPattern());
+  jacobianValid_ = false;
+  PetscCall(assemble(J_));
+  PetscCall(SNESGetKSP(snes_, &ksp));
+  PetscCall(KSPSetOperators(ksp, J_, J_));
+  PetscCall(KSPGetPC(ksp, &pc));
+  // As in factor(): a breakdown is recognised by its error code, kept out of the error log.
+  PetscCall(PetscPushErrorHandler(PetscReturnErrorHandler, nullptr));
+  PetscErrorCode ierr = PCSetUp(pc);
+  if (!ierr) ierr = KSPSolve(ksp, b, y);
+  PetscCall(PetscPopErrorHandler());
+  if (!ierr) PetscCall(KSPGetConvergedReason(ksp, &kspReason));
+  *solved = !ierr && kspReason > 0;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode NewtonSolver::solve(Vec x, PetscInt *iterations, SNESConvergedReason *reason)
+{
+  PetscFunctionBeginUser;
+  PetscCall(followPattern());
   ++stats_.solves;
   if (!reuse_.enabled) {
     PetscCall(solveOnce(x, iterations, reason));

@@ -142,7 +142,7 @@ TEST(StepSize, LargeAndTinyStepsOnCantileverAndPendulum)
     const char *scene;
     double dt, tEnd;
   };
-  for (const Case c : {Case{"cantilever_dynamic.yaml", 0.05, 1.0}, Case{"cantilever_dynamic.yaml", 1e-6, 2e-3},
+  for (const Case c : {Case{"cantilever_dynamic.yaml", 0.05, 2.0}, Case{"cantilever_dynamic.yaml", 1e-6, 2e-3},
                        Case{"flexible_pendulum.yaml", 0.05, 1.0}, Case{"flexible_pendulum.yaml", 1e-6, 1e-3}}) {
     Scene scene = inputScene(c.scene);
     scene.dynamic.dt = c.dt;
@@ -159,12 +159,20 @@ TEST(StepSize, LargeAndTinyStepsOnCantileverAndPendulum)
                 c.scene, c.dt, (int)run.summary.steps, (int)run.summary.rejected, maxPositive(res) / scale,
                 maxNegative(res) / scale, scale, maxOf(run.violation),
                 run.sensors.back()[0].position.x(), run.sensors.back()[0].position.y());
-    // h = 0.05 s is 3 periods of the first mode and ~1e3 of the stiffest:
-    // generalized-alpha overshoots in the first step (+0.8 of the scale, known
-    // for large omega h), then damps to the static deflection.
-    EXPECT_LT(maxPositive(res), (c.dt > 0.01 ? 1.0 : 1e-4) * scale) << c.scene << " h = " << c.dt;
-    if (cantilever && c.dt > 0.01) // static deflection with gravity: 5.38 + 0.13 mm
+    // h = 0.05 s is 3 periods of the first mode and ~1e3 of the stiffest.
+    // Started from a = qdd_0, generalized-alpha overshot in the first step
+    // (+0.8 of the scale: the unresolved modes' first-step velocity grows
+    // like omega h, docs/model.md §4.3), Newton failed on the second step
+    // and the step was cut 7 times, to 0.4 ms (9 rejected in all). From the
+    // filtered start the energy stays within 1 % of the scale, every step
+    // is taken, and the scheme damps the aliased first mode (omega h = 17,
+    // near the triple root -rho_inf: slowly) to the static deflection: 4.60 mm
+    // after 20 steps, 5.42-5.46 mm after 40.
+    EXPECT_LT(maxPositive(res), (c.dt > 0.01 ? 1e-2 : 1e-4) * scale) << c.scene << " h = " << c.dt;
+    if (cantilever && c.dt > 0.01) { // static deflection with gravity: 5.38 + 0.13 mm
+      EXPECT_EQ(run.summary.rejected, 0) << "no step cut at h = " << c.dt;
       EXPECT_NEAR(-run.sensors.back()[0].position.y(), 5.51e-3, 0.03 * 5.51e-3) << "settles to the static deflection";
+    }
     EXPECT_LT(maxOf(run.violation), 1e-8) << c.scene << " h = " << c.dt;
   }
 }

@@ -135,7 +135,12 @@ TEST(FastExtraction, ContactPointCrossesSeveralElementsInOneStep)
   // element crossings, with 8x the energy error (4.6e2 J against 56 J), and
   // so do some with the acceleration predictor (-boom_acceleration_predictor,
   // docs/model.md §4.2: 3.4e2 J); the Newton failures act as a step-size
-  // control here. The bounds below are those of that step history.
+  // control here. Started from a = qdd_0 (-boom_filtered_start 0) the
+  // second step was cut 13 times, to 1.2 us, by the unresolved modes' start
+  // transient (docs/model.md §4.3): 119 steps, 16 rejected, 56 J. From the
+  // filtered start the run keeps h = 10 ms (64 steps, 2 rejected) and
+  // creates 3.3e2 J: less than 16 elements at the same h (6.2e2 J, under
+  // one crossing per step, either start), which is the bound.
   // Without the kink restart (model.md §4.8): the drive's rate jumps by
   // 5 m/s at 0.1 s and 0.35 s, and the restart imposes these jumps at once
   // through each mesh's mass matrix; the elastic waves that this starts
@@ -152,10 +157,14 @@ TEST(FastExtraction, ContactPointCrossesSeveralElementsInOneStep)
   EXPECT_GE(e.maxStepInElements, 3.0);
   EXPECT_LT(e.driveError, 1e-9);
   EXPECT_LT(e.violation, 1e-8);
-  EXPECT_LT(e.created, 1e-3 * e.drivenWork);
-  // Nearly the same end state as 16 elements (under one crossing per step) at the same h.
-  const DynamicHistory fine =
-    runDynamicWithOption(extraction(1.25, 5.0, 0.6, 1e-2), PETSC_COMM_WORLD, "-boom_jacobian_reuse", "0", false, false);
+  // Nearly the same end state and energy error as 16 elements (under one crossing per step) at the same h.
+  const Scene coarse = extraction(1.25, 5.0, 0.6, 1e-2);
+  const DynamicHistory fine = runDynamicWithOption(coarse, PETSC_COMM_WORLD, "-boom_jacobian_reuse", "0", false, false);
+  ASSERT_TRUE(fine.summary.completed) << fine.summary.failure;
+  const Extremes e16 = measure(fine, coarse, 2.0 / 16);
+  print("16 elements, h = 10 ms, 5 m/s", fine, e16);
+  EXPECT_LT(e.created, 1e-2 * e.drivenWork);
+  EXPECT_LT(e.created, e16.created) << "crossing several elements per step creates no more energy than a coarse mesh";
   if (rank() == 0) {
     const double gap = (run.sensors.back()[0].position - fine.sensors.back()[0].position).norm();
     PetscPrintf(PETSC_COMM_WORLD, "  tip at 0.6 s: %.5f, %.5f m (16 elements: %.5f, %.5f m)\n",
