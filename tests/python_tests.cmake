@@ -65,3 +65,10 @@ boomdyn_script_test(regression.help regression/test_help.py regression)
 boomdyn_script_test(regression.option_values regression/test_option_values.py regression)
 boomdyn_script_test(regression.damped_modal_output regression/test_damped_modal_output.py regression)
 boomdyn_script_test(postprocess.hoist_output postprocess/test_hoist_output.py postprocess)
+
+# A fresh clone's scripts/main.sh compiles boomdyn's sources and no test
+# program (its build run as a dry run in a fresh copy of the tree; ~30 s).
+add_test(NAME scripts.main_builds_boomdyn_only
+  COMMAND ${python} ${CMAKE_SOURCE_DIR}/tests/scripts/test_main_build.py ${CMAKE_SOURCE_DIR}
+          ${CMAKE_BINARY_DIR}/test_output/main_build)
+set_tests_properties(scripts.main_builds_boomdyn_only PROPERTIES LABELS scripts TIMEOUT 600)
