@@ -59,7 +59,14 @@ add_test(NAME architecture.layers
   COMMAND ${python} ${CMAKE_SOURCE_DIR}/tests/architecture/check_layers.py ${CMAKE_SOURCE_DIR})
 add_test(NAME architecture.layers_self_test
   COMMAND ${python} ${CMAKE_SOURCE_DIR}/tests/architecture/check_layers.py --self-test)
-set_tests_properties(architecture.layers architecture.layers_self_test PROPERTIES LABELS architecture)
+# What docs/architecture.md states about the code (size limit, layers,
+# registered types) holds for the tree; the self-test doctors copies.
+add_test(NAME architecture.doc_claims
+  COMMAND ${python} ${CMAKE_SOURCE_DIR}/tests/architecture/check_doc_claims.py ${CMAKE_SOURCE_DIR})
+add_test(NAME architecture.doc_claims_self_test
+  COMMAND ${python} ${CMAKE_SOURCE_DIR}/tests/architecture/check_doc_claims.py --self-test ${CMAKE_SOURCE_DIR})
+set_tests_properties(architecture.layers architecture.layers_self_test architecture.doc_claims
+  architecture.doc_claims_self_test PROPERTIES LABELS architecture)
 boomdyn_script_test(postprocess.output_channels postprocess/test_output_channels.py postprocess)
 boomdyn_script_test(regression.help regression/test_help.py regression)
 boomdyn_script_test(regression.option_values regression/test_option_values.py regression)
