@@ -79,3 +79,12 @@ add_test(NAME scripts.main_builds_boomdyn_only
   COMMAND ${python} ${CMAKE_SOURCE_DIR}/tests/scripts/test_main_build.py ${CMAKE_SOURCE_DIR}
           ${CMAKE_BINARY_DIR}/test_output/main_build)
 set_tests_properties(scripts.main_builds_boomdyn_only PROPERTIES LABELS scripts TIMEOUT 600)
+
+# README.md's and docs/options.md's option tables against `boomdyn -help`:
+# every option exists, every default given as a value is the one -help
+# prints; the self-test doctors the tables (tests/docs/check_options.py).
+boomdyn_script_test(docs.options_match_help docs/check_options.py docs)
+add_test(NAME docs.options_match_help_self_test
+  COMMAND ${python} ${CMAKE_SOURCE_DIR}/tests/docs/check_options.py --self-test $<TARGET_FILE:boomdyn>
+          ${CMAKE_SOURCE_DIR} ${CMAKE_BINARY_DIR}/test_output/options_help)
+set_tests_properties(docs.options_match_help_self_test PROPERTIES LABELS docs)
