@@ -1,6 +1,8 @@
 #!/usr/bin/env python3
 """A fresh clone's scripts/main.sh compiles the boomdyn program and nothing
-else: no test program, no boomdyn_schema_docs, no fuzzer, no benchmark.
+else: no test program, no boomdyn_schema_docs, no fuzzer, no benchmark; and
+it installs the packages to build and run, not the tests' (the fuzzer's
+clang, meshio, Google Benchmark: scripts/install-deps.sh --tests).
 
 Runs the real scripts/main.sh and scripts/build.sh in a fresh copy of the
 tree (the sources linked, scripts/ copied, a fresh build folder; a
@@ -43,7 +45,12 @@ def fresh_clone(root):
             continue
         os.symlink(os.path.join(source, name), os.path.join(root, name))
     shutil.copytree(os.path.join(source, "scripts"), os.path.join(root, "scripts"))
-    write_script(os.path.join(root, "scripts", "install-deps.sh"), "echo 'install-deps: (stand-in)'\n")
+    write_script(os.path.join(root, "scripts", "install-deps.sh"),
+                 'echo "install-deps $*" >> "%s"\necho "install-deps: (stand-in)"\n' % install_record(root))
+
+
+def install_record(root):
+    return os.path.join(root, "install_deps_calls.txt")
 
 
 def write_script(path, body):
@@ -97,6 +104,11 @@ def main():
     dry_run_cmake(os.path.join(work, "main_build_bin"), record)
 
     calls, log = run(root, ["scripts/main.sh"], record)
+    installs = open(install_record(root)).read().splitlines() if os.path.exists(install_record(root)) else []
+    check(installs == ["install-deps "], "main.sh installs the packages to build and run, not the tests' (%s)" % installs)
+    test_sh = open(os.path.join(source, "scripts", "test.sh")).read()
+    check(re.search(r"^scripts/install-deps\.sh --tests$", test_sh, re.M),
+          "test.sh installs the tests' packages too (install-deps.sh --tests)")
     builds = [c for c in calls if "--build" in c.split()]
     check(len(builds) == 1, "main.sh runs one cmake --build (%s)" % builds)
     targets = re.findall(r"--target\s+((?:[^-\s]\S*\s*)+)", builds[0]) if builds else []
