@@ -59,9 +59,32 @@ add_test(NAME architecture.layers
   COMMAND ${python} ${CMAKE_SOURCE_DIR}/tests/architecture/check_layers.py ${CMAKE_SOURCE_DIR})
 add_test(NAME architecture.layers_self_test
   COMMAND ${python} ${CMAKE_SOURCE_DIR}/tests/architecture/check_layers.py --self-test)
-set_tests_properties(architecture.layers architecture.layers_self_test PROPERTIES LABELS architecture)
+# What docs/architecture.md states about the code (size limit, layers,
+# registered types) holds for the tree; the self-test doctors copies.
+add_test(NAME architecture.doc_claims
+  COMMAND ${python} ${CMAKE_SOURCE_DIR}/tests/architecture/check_doc_claims.py ${CMAKE_SOURCE_DIR})
+add_test(NAME architecture.doc_claims_self_test
+  COMMAND ${python} ${CMAKE_SOURCE_DIR}/tests/architecture/check_doc_claims.py --self-test ${CMAKE_SOURCE_DIR})
+set_tests_properties(architecture.layers architecture.layers_self_test architecture.doc_claims
+  architecture.doc_claims_self_test PROPERTIES LABELS architecture)
 boomdyn_script_test(postprocess.output_channels postprocess/test_output_channels.py postprocess)
 boomdyn_script_test(regression.help regression/test_help.py regression)
 boomdyn_script_test(regression.option_values regression/test_option_values.py regression)
 boomdyn_script_test(regression.damped_modal_output regression/test_damped_modal_output.py regression)
 boomdyn_script_test(postprocess.hoist_output postprocess/test_hoist_output.py postprocess)
+
+# A fresh clone's scripts/main.sh compiles boomdyn's sources and no test
+# program (its build run as a dry run in a fresh copy of the tree; ~30 s).
+add_test(NAME scripts.main_builds_boomdyn_only
+  COMMAND ${python} ${CMAKE_SOURCE_DIR}/tests/scripts/test_main_build.py ${CMAKE_SOURCE_DIR}
+          ${CMAKE_BINARY_DIR}/test_output/main_build)
+set_tests_properties(scripts.main_builds_boomdyn_only PROPERTIES LABELS scripts TIMEOUT 600)
+
+# README.md's and docs/options.md's option tables against `boomdyn -help`:
+# every option exists, every default given as a value is the one -help
+# prints; the self-test doctors the tables (tests/docs/check_options.py).
+boomdyn_script_test(docs.options_match_help docs/check_options.py docs)
+add_test(NAME docs.options_match_help_self_test
+  COMMAND ${python} ${CMAKE_SOURCE_DIR}/tests/docs/check_options.py --self-test $<TARGET_FILE:boomdyn>
+          ${CMAKE_SOURCE_DIR} ${CMAKE_BINARY_DIR}/test_output/options_help)
+set_tests_properties(docs.options_match_help_self_test PROPERTIES LABELS docs)

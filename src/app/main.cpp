@@ -26,7 +26,7 @@
 #include <vector>
 
 static const char help[] = "boomdyn SCENE.yaml [-o OUT.h5] [-boom_overwrite] [-boom_quiet] [boomdyn and PETSc options]\n"
-                           "(boomdyn -help lists every option with its default; README.md describes them)\n";
+                           "(boomdyn -help lists every option with its default; docs/options.md describes them)\n";
 
 namespace {
 
@@ -137,7 +137,7 @@ PetscErrorCode runProgram(int argc, char **argv, boomdyn::AppOptions *opts, std:
     PetscFunctionReturn(0);
   }
   PetscCheck(scene, PETSC_COMM_WORLD, PETSC_ERR_USER_INPUT,
-             "usage: boomdyn SCENE.yaml [-o OUT.h5] [-boom_overwrite] [-boom_quiet] [PETSc options]; see README.md "
+             "usage: boomdyn SCENE.yaml [-o OUT.h5] [-boom_overwrite] [-boom_quiet] [PETSc options]; see README.md and docs/options.md "
              "(boomdyn -help lists every option)");
   PetscCall(boomdyn::rejectUnknownOptions(scene.get()));
   PetscCall(boomdyn::checkRunFiles(*opts, scene->analysis == boomdyn::Scene::Analysis::Dynamic));

@@ -51,7 +51,7 @@ PetscErrorCode optionString(PetscOptionItems *PetscOptionsObject, const char *na
   PetscBool given = PETSC_FALSE;
   PetscFunctionBeginUser;
   appOptionNames().push_back(name);
-  PetscCall(PetscOptionsString(name, help, "README.md", value->c_str(), buf, sizeof buf, &given));
+  PetscCall(PetscOptionsString(name, help, "docs/options.md", value->c_str(), buf, sizeof buf, &given));
   PetscCheck(!given || buf[0], PETSC_COMM_WORLD, PETSC_ERR_USER_INPUT, "%s needs a value (%s)", name, help);
   if (given) *value = buf;
   if (set) *set = given;
@@ -63,7 +63,7 @@ PetscErrorCode optionBool(PetscOptionItems *PetscOptionsObject, const char *name
   PetscBool flag = *value ? PETSC_TRUE : PETSC_FALSE;
   PetscFunctionBeginUser;
   appOptionNames().push_back(name);
-  PetscCall(PetscOptionsBool(name, help, "README.md", flag, &flag, nullptr));
+  PetscCall(PetscOptionsBool(name, help, "docs/options.md", flag, &flag, nullptr));
   *value = flag;
   PetscFunctionReturn(0);
 }
@@ -80,7 +80,7 @@ PetscErrorCode optionNumber(PetscOptionItems *PetscOptionsObject, const char *na
   // PETSc takes an option without its value as not given.
   PetscCheck(!has || text[0], PETSC_COMM_WORLD, PETSC_ERR_USER_INPUT, "%s needs a value (%s)", name, help);
   if constexpr (std::is_same_v<T, PetscInt>) {
-    PetscCall(PetscOptionsInt(name, help, "README.md", *value, value, &given));
+    PetscCall(PetscOptionsInt(name, help, "docs/options.md", *value, value, &given));
     // PETSc wraps integers beyond PetscInt's range (4294967297 elements would
     // run with 1): read the text again and refuse what does not fit.
     if (given && has) {
@@ -92,7 +92,7 @@ PetscErrorCode optionNumber(PetscOptionItems *PetscOptionsObject, const char *na
                  PETSC_MIN_INT, PETSC_MAX_INT);
     }
   } else {
-    PetscCall(PetscOptionsReal(name, help, "README.md", *value, value, &given));
+    PetscCall(PetscOptionsReal(name, help, "docs/options.md", *value, value, &given));
     // inf and nan parse as numbers; no boomdyn quantity may be either.
     PetscCheck(!given || std::isfinite(*value), PETSC_COMM_WORLD, PETSC_ERR_USER_INPUT,
                "%s %s: must be a finite number", name, text);
@@ -375,7 +375,7 @@ PetscErrorCode readAppOptions(Scene *scene, AppOptions *opts)
   PetscBool help;
   PetscFunctionBeginUser;
   appOptionNames().clear();
-  PetscOptionsBegin(PETSC_COMM_WORLD, nullptr, "boomdyn: run options (README.md)", "boomdyn");
+  PetscOptionsBegin(PETSC_COMM_WORLD, nullptr, "boomdyn: run options (docs/options.md)", "boomdyn");
   PetscCall(readRunOptions(PetscOptionsObject, opts));
   PetscCall(readSceneOverrides(PetscOptionsObject, scene ? scene : &noScene, &set));
   PetscOptionsEnd();

@@ -30,7 +30,7 @@ jobs=${FUZZ_JOBS:-1}
 cxx=${CLANGXX:-clang++}
 
 if ! command -v "$cxx" > /dev/null 2>&1; then
-  echo "fuzz: $cxx not found (install clang and libclang-rt-14-dev: scripts/install-deps.sh); skipping"
+  echo "fuzz: $cxx not found (install clang and libclang-rt-14-dev: scripts/install-deps.sh --tests); skipping"
   exit 77
 fi
 
@@ -65,7 +65,7 @@ if [ $stale -eq 1 ]; then
        $(pkg-config --libs slepc petsc hdf5 yaml-cpp mpi-cxx) -lmetis \
        -o "$exe.tmp" > "$dir/build.log" 2>&1; then
     cat "$dir/build.log"
-    echo "fuzz: FAILED to build the fuzzer (is libclang-rt-14-dev installed? scripts/install-deps.sh)"
+    echo "fuzz: FAILED to build the fuzzer (is libclang-rt-14-dev installed? scripts/install-deps.sh --tests)"
     exit 1
   fi
   mv -f "$exe.tmp" "$exe"

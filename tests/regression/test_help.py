@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""`boomdyn -help` lists every boomdyn option that README.md documents, with
+"""`boomdyn -help` lists every boomdyn option that README.md and docs/options.md document, with
 its default; with a scene it also lists the scene's per-body options
 (-boom_elements_<body>) and the TS type of the run.
 Usage: test_help.py BOOMDYN_EXECUTABLE SOURCE_DIR WORK_DIR"""
@@ -19,10 +19,12 @@ check = script_checks.checker(results)
 
 
 def main():
-    with open(os.path.join(source, "README.md")) as f:
-        readme = f.read()
+    readme = ""
+    for doc in ("README.md", "docs/options.md"):
+        with open(os.path.join(source, doc)) as f:
+            readme += f.read()
     documented = sorted(set(re.findall(r"-boom_[a-z_]+[a-z]", readme)) - {"-boom_elements_"})
-    check(len(documented) >= 15, "README.md documents the boomdyn options (%d found)" % len(documented))
+    check(len(documented) >= 15, "README.md and docs/options.md document the boomdyn options (%d found)" % len(documented))
     text = subprocess.run([boomdyn, "-help"], capture_output=True, text=True).stdout
     listed = set(re.findall(r"^\s+(-boom_[a-z_]+)\s*[:<]", text, re.M))
     missing = [o for o in documented if o not in listed]

@@ -177,7 +177,7 @@ output:
   };
   // Full Newton: a rope 1e9 N stiff turns the Newton tolerance's error in the
   // positions into tension errors; with the default Jacobian reuse the two
-  // differ by 1.2e-4 m and 3.4e-4 of the tension (README "Defaults").
+  // differ by 1.2e-4 m and 3.4e-4 of the tension (docs/defaults.md).
   const DynamicHistory rigid = runDynamicWithOption(scene("type: rope"), PETSC_COMM_WORLD, "-boom_jacobian_reuse", "0");
   const DynamicHistory elastic =
     runDynamicWithOption(scene("type: elastic_rope, EA: 1.0e9"), PETSC_COMM_WORLD, "-boom_jacobian_reuse", "0");

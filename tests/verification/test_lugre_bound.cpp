@@ -134,7 +134,7 @@ BoundHistory run(const Case &c)
   // Full Newton: the bounds hold for the solution of each step's equations
   // to 1e-6; with the default Jacobian reuse the friction states end just
   // inside the Newton tolerance and the step bound is exceeded by up to
-  // 1.9e-6 relative at sigma0 = 1e7 (README "Defaults").
+  // 1.9e-6 relative at sigma0 = 1e7 (docs/defaults.md).
   PetscCallAbort(PETSC_COMM_WORLD, PetscOptionsSetValue(nullptr, "-boom_jacobian_reuse", "0"));
   Simulation sim(parseScene(scene(c), "tilting-rail.yaml"), PETSC_COMM_WORLD, testOptions());
   check(sim.setUp());
