@@ -16,7 +16,7 @@ Cases: `paper` (inputs/paper_extraction.yaml with its tracking every 10 ms),
 `paper_notrack` (the same, -boom_tracking_interval 0), `pads` and
 `rope_pair` (inputs/paper_extraction_pads.yaml, paper_extraction_rope_pair.yaml,
 as they are), `interval` (the paper scene with tracking every 1, 10 and 100 ms),
-`cantilever` (the 2 m cantilever of docs/performance.md, 1000 steps, N
+`cantilever` (the 2 m cantilever inputs/cantilever_dynamic.yaml, 1000 steps, N
 elements; default options of each binary, both with -boom_jacobian_reuse 1 and
 both with -boom_jacobian_reuse 0), `startup` (the cantilever with 8 elements,
 one step).

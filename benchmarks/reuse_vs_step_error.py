@@ -24,7 +24,7 @@ the entries whose step error is above 1e-12 of the family, of the reuse
 difference to the step-size difference: below 1 means that reuse changes
 each result by less than halving the step does. The integer entries (step
 and iteration counts) and the roundoff-only entries (violation.*) are left out.
-docs/performance.md, "Defaults", has the table this made.
+docs/performance-history.md, "Defaults and start-up", has the table this made.
 """
 
 import argparse

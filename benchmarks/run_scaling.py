@@ -8,13 +8,19 @@ triangular solves (PCApply) and the rest of the step.
 
   /usr/bin/python3 benchmarks/run_scaling.py [--scene benchmarks/scenes/long_boom.yaml] \\
       [--elements 10 100 1000 10000 100000] [--ranks 1] [--steps 100] [--label NAME] [--out FILE.md] \\
-      [-- boomdyn options, e.g. -boom_jacobian_reuse -boom_schur_dd]
+      [--csv FILE.csv] [-- boomdyn options, e.g. -boom_jacobian_reuse 0]
+
+--csv appends one row per run to FILE.csv (the header first if the file is new),
+in the format benchmarks/plot_performance.py reads (docs/performance.md):
+run it for --ranks 1 and --ranks 2 into the same file and plot that file.
 
 Only the time steps are counted (the -log_view event BoomStep): model set-up,
 the initial acceleration solve and the output are not part of the per-step
 cost (no state snapshots are written: -boom_state_interval 0).
 """
 import argparse
+import csv
+import datetime
 import os
 import re
 import subprocess
@@ -24,6 +30,12 @@ import tempfile
 import h5py
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+# Columns of --csv, also those of benchmarks/results/performance.csv. "timed"
+# says what per_step_ms divides by the steps: "steps" (the BoomStep event) or
+# "whole_run" (the whole process, start-up and output included).
+CSV_COLUMNS = ["scene", "elements", "ranks", "options", "steps", "timed", "per_step_ms", "per_element_step_us",
+               "newton_per_step", "jacobians_per_step", "residual_pct", "jacobian_pct", "factor_pct", "solve_pct",
+               "rest_pct", "tip_y_m", "source"]
 EVENTS = {"BoomStep": "step", "SNESFunctionEval": "residual", "SNESJacobianEval": "jacobian", "PCSetUp": "factor",
           "PCApply": "solve"}
 
@@ -57,6 +69,15 @@ def run(scene, n, ranks, steps, extra, tmp):
     return len(its), its.mean(), log_events(log), tip
 
 
+def append_csv(path, row):
+    new = not os.path.exists(path) or os.path.getsize(path) == 0
+    with open(path, "a", newline="") as f:
+        w = csv.DictWriter(f, fieldnames=CSV_COLUMNS)
+        if new:
+            w.writeheader()
+        w.writerow(row)
+
+
 def main():
     argv = sys.argv[1:]
     extra = []
@@ -70,6 +91,7 @@ def main():
     p.add_argument("--steps", type=int, default=100)
     p.add_argument("--label", default="")
     p.add_argument("--out", help="append the markdown table to this file")
+    p.add_argument("--csv", help="append one row per run to this CSV file (benchmarks/plot_performance.py reads it)")
     a = p.parse_args(argv)
     head = ("| elements | ranks | options | steps | per step [ms] | per element and step [µs] | Newton it/step | "
             "Jacobians/step | residuals [%] | Jacobians [%] | factor [%] | solve [%] | rest [%] | tip y [m] |")
@@ -87,6 +109,16 @@ def main():
                 ev["jacobian"][0] / max(steps, 1), share["residual"], share["jacobian"], share["factor"],
                 share["solve"], rest, tip[1]))
             print(rows[-1], flush=True)
+            if a.csv:
+                append_csv(a.csv, dict(
+                    scene=os.path.relpath(os.path.abspath(a.scene), ROOT), elements=n, ranks=a.ranks, options=label,
+                    steps=steps, timed="steps", per_step_ms="%.4g" % (1e3 * step / steps),
+                    per_element_step_us="%.4g" % (1e6 * step / steps / n), newton_per_step="%.3f" % its,
+                    jacobians_per_step="%.3f" % (ev["jacobian"][0] / max(steps, 1)),
+                    residual_pct="%.0f" % share["residual"], jacobian_pct="%.0f" % share["jacobian"],
+                    factor_pct="%.0f" % share["factor"], solve_pct="%.0f" % share["solve"], rest_pct="%.0f" % rest,
+                    tip_y_m="%.6e" % tip[1],
+                    source="run_scaling.py, %s UTC" % datetime.datetime.utcnow().strftime("%Y-%m-%d %H:%M")))
     table = "\n".join(rows)
     print(table)
     if a.out:

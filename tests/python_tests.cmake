@@ -33,6 +33,13 @@ add_test(NAME postprocess.plot_run
   WORKING_DIRECTORY ${CMAKE_BINARY_DIR})
 set_tests_properties(postprocess.plot_run PROPERTIES LABELS postprocess)
 
+# benchmarks/plot_performance.py (the plots of docs/performance.md) on the
+# recorded figures and on rows in benchmarks/run_scaling.py's --csv format.
+add_test(NAME postprocess.plot_performance
+  COMMAND ${python} ${CMAKE_SOURCE_DIR}/tests/postprocess/test_plot_performance.py
+  WORKING_DIRECTORY ${CMAKE_BINARY_DIR})
+set_tests_properties(postprocess.plot_performance PROPERTIES LABELS postprocess)
+
 # Scripts that run the boomdyn binary: SCRIPT BOOMDYN SOURCE_DIR BINARY_DIR.
 function(boomdyn_script_test name script label)
   add_test(NAME ${name}

@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """Offline study of the tracking refinement on dumped pencils (issue 18,
-docs/performance.md "Twelfth round").
+docs/performance-history.md "Twelfth round").
 
 The pencils come from a build with dump_pencils.patch applied (study only,
 not on main): every refined analysis writes A, B (and D), the start basis V

@@ -20,8 +20,8 @@ PetscErrorCode useDirectSolver(KSP ksp);
 // this replaces MUMPS for the eigen-analyses and the statics: on these
 // banded saddle-point systems MUMPS's distributed factorization was slower
 // than one rank's KLU (paper scene, 2 ranks: the tracking's solves 4.6 s
-// against 1.2-1.5 s, docs/performance.md "Tenth round"), and it adds the
-// ranks' contributions in the order its messages arrive, so that two runs
+// against 1.2-1.5 s, docs/performance-history.md "Tenth round"), and it adds
+// the ranks' contributions in the order its messages arrive, so that two runs
 // differed in the last bits. The redundant factorization is the same
 // sequential one on every rank: two runs agree bitwise. Its cost is that of
 // one rank's factorization plus gathering the matrix, and every rank holds

@@ -68,7 +68,7 @@ public:
   // A new group of new double datasets (name, data, dims as writeArray)
   // with one double attribute: the group's path is looked up once, not once
   // per dataset (the /paraview snapshots: those lookups were most of their
-  // output time, docs/performance.md).
+  // output time, docs/performance-history.md).
   struct NamedArray {
     std::string name;
     const std::vector<double> *data;

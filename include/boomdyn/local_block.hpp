@@ -1,6 +1,6 @@
 // Dense blocks of distributed vectors for the tracking refinements (issue 18,
-// item 2; docs/performance.md "Tracking in dense local blocks"). At the paper
-// scene's 221 unknowns a PETSc call on one Vec (VecMDot, VecMAXPY,
+// item 2; docs/performance-history.md "Tracking in dense local blocks"). At
+// the paper scene's 221 unknowns a PETSc call on one Vec (VecMDot, VecMAXPY,
 // VecDuplicate, ...) costs about as much as its arithmetic, and a refinement
 // made several hundred of them. Here a set of vectors of one layout is the
 // local rows of an Eigen column-major matrix (one column per vector): inner

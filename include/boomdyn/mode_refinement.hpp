@@ -75,8 +75,8 @@ public:
   // falling, within floorFactor of its round-off floor (roundOffFloor()).
   // 5e-9 (was 1e-9): the eigenvalue error is of the order of residual^2 /
   // gap, far below the 1e-8 acceptance, and 2 % fewer tracking instructions
-  // (docs/performance.md); half the 1e-8 the tests demand, because the
-  // residual recomputed from the final vectors differs by about the floor.
+  // (docs/performance-history.md); half the 1e-8 the tests demand, because
+  // the residual recomputed from the final vectors differs by about the floor.
   // When the residuals stop falling with a pair above both, the full solve
   // runs.
   double tolerance = 5e-9;

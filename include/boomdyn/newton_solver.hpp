@@ -34,8 +34,9 @@ struct PetscDestroyer<SNES> {
 };
 
 struct JacobianReuse {
-  // On by default (docs/defaults.md; docs/performance.md: the moves of the
-  // results against full Newton are far below each scene's time-step error).
+  // On by default (docs/defaults.md; docs/performance-history.md, "Defaults
+  // and start-up": the moves of the results against full Newton are far
+  // below each scene's time-step error).
   bool enabled = true;
   // Rebuild when |F_k| / |F_{k-1}| exceeds this (a stale matrix contracts slowly).
   double refreshRatio = 0.25;

@@ -2,7 +2,8 @@
 // split boomdyn uses (unknowns in equal contiguous blocks, each item on the
 // rank owning its first unknown) against a METIS k-way partition of the item
 // graph (items adjacent when they share an unknown). Reported by
-// `boomdyn SCENE -boom_partition_report P` (docs/performance.md).
+// `boomdyn SCENE -boom_partition_report P` (docs/performance.md, "Several
+// ranks").
 #pragma once
 
 #include "boomdyn/model.hpp"

@@ -13,12 +13,12 @@
 // and a solve is one forward and one backward sweep over each rank's interior
 // factors (the cost of one KLU solve) around a small dense solve: the work
 // per rank falls like 1/P, with no dense A_II^{-1} A_IG block at all
-// (docs/performance.md, "Two ranks: the Schur complement without W"). It is
-// the dynamic runs' default on several ranks (NewtonSolver::setUp;
+// (docs/performance-history.md, "Two ranks: the Schur complement without
+// W"). It is the dynamic runs' default on several ranks (NewtonSolver::setUp;
 // -boom_schur_dd 0: MUMPS). MUMPS factors a boom's chain-like elimination
 // tree front by front, which is slower than one KLU solve on one rank at
-// every size measured (docs/performance.md), and is not bitwise
-// reproducible from run to run.
+// every size measured (docs/performance.md, "Several ranks"), and is not
+// bitwise reproducible from run to run.
 //
 // A group of rows all of whose columns are another rank's or the group's own
 // (a clamp's multipliers, numbered last on the last rank, with the clamped

@@ -406,7 +406,7 @@ PetscErrorCode DampedModeRefiner::refine(double t, Vec q, Vec lambda, Mat K, Mat
   // the first term of (K - w^2 M)^{-1} = P^{-1} + (w^2 - tau) P^{-1} M P^{-1}
   // + ...: u = P^{-1} D phi and P^{-1} M u (the second saves a projection;
   // P^{-1} D u, second order in the damping, and a third term of the series
-  // cost more than they save: docs/performance.md, "Tenth round"). The
+  // cost more than they save: docs/performance-history.md, "Tenth round"). The
   // products and solves of all pairs as blocks.
   Block rhs(n, count), U(n, count), U2(n, count), W(n, count);
   for (int j = 0; ok && j < count; ++j) W.col(j) = phi.col(wanted[j]);

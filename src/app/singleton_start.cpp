@@ -21,7 +21,7 @@ bool underLauncher()
 // one-process run never uses: it launches a supporting daemon (orted) for a
 // possible MPI_Comm_spawn, and its default point-to-point layer loads the
 // PSM/PSM2 (Omni-Path) transports, whose initialization calibrates a timer
-// by sleeping ~0.1 s each, hardware or not (docs/performance.md,
+// by sleeping ~0.1 s each, hardware or not (docs/performance-history.md,
 // "Start-up"). One process needs neither: unless the user's environment says
 // otherwise, a singleton runs without the daemon and with the plain ob1
 // layer.

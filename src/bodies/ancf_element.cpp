@@ -416,7 +416,7 @@ inline void addElasticForceAt(double wx, double EA, double EI, double EAproj, bo
 // record (alpha, gradients) is built and returned, the Legendre weights
 // come from the shape table, and r', r'' stay in registers as x and y parts
 // instead of 2-vectors (the Eigen path spent more instructions on moves and
-// shuffles than on its ~400 flops; callgrind, docs/performance.md).
+// shuffles than on its ~400 flops; callgrind, docs/performance-history.md).
 // T is double (one element) or ForceLanes (kForceBatch elements of one
 // beam, one per lane): every operation is lane-wise IEEE arithmetic in the
 // same order as the scalar one (no FMA in this build, no reassociation), so

@@ -596,7 +596,7 @@ PetscErrorCode GeneralizedAlpha::advance(double h, double tEnd, StepResult *resu
     // solution (stick-slip scene: the first step diverged from the consistent
     // initial accelerations); in smooth motion it saves about one Newton
     // iteration in six (paper extraction: 29 907 residuals instead of
-    // 34 928, docs/performance.md).
+    // 34 928, docs/performance-history.md).
     PetscCall(predict(h, betaP, gammaP, sigma));
     // First-order states (LuGre z): backward Euler, zdot = (z - z_n)/h, from z_n.
     PetscCall(forFirstOrder([&](PetscInt i, const PetscScalar *q, PetscScalar *vc, PetscScalar *x) {

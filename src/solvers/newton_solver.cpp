@@ -45,8 +45,9 @@ PetscErrorCode NewtonSolver::setUp(Assembler &assembler, const char *prefix, Pet
   // Several ranks, dynamics: the interface Schur complement by default (exact
   // like MUMPS, 1.8x one rank on the 10^5-element boom where MUMPS was slower
   // than one rank, and bitwise reproducible from run to run, which MUMPS is
-  // not: docs/performance.md, "Ninth round"). Statics (prefix static_) does
-  // not: a free piece between two ranks has a singular interior block.
+  // not: docs/performance-history.md, "Ninth round"). Statics (prefix
+  // static_) does not: a free piece between two ranks has a singular
+  // interior block.
   PetscMPIInt size;
   PetscCallMPI(MPI_Comm_size(assembler.comm(), &size));
   PetscBool schur = size > 1 && !prefix ? PETSC_TRUE : PETSC_FALSE, blockTest = PETSC_TRUE;

@@ -102,8 +102,9 @@ dynamic: {t_end: 1.6, dt: 1.0e-3, rho_inf: 0.8}
 // updates of ~2e-13 |x|, about 8x what an increment can resolve (100 eps |q|):
 // a kept matrix's update stops there, above the old floor, and before the
 // round-off floor was learned every step ended with a Newton step (41
-// Jacobians in 50 steps, docs/performance.md). Now one Newton step shows the
-// floor and later solves stop at it; the answer stays that of full Newton.
+// Jacobians in 50 steps, docs/performance-history.md). Now one Newton step
+// shows the floor and later solves stop at it; the answer stays that of full
+// Newton.
 TEST(JacobianReuse, LongBoomStopsAtTheRoundoffFloorANewtonStepShowed)
 {
   Scene scene = readSceneFile(std::string(BOOMDYN_SOURCE_DIR) + "/benchmarks/scenes/long_boom.yaml");
