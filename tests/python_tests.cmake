@@ -65,3 +65,9 @@ boomdyn_script_test(regression.help regression/test_help.py regression)
 boomdyn_script_test(regression.option_values regression/test_option_values.py regression)
 boomdyn_script_test(regression.damped_modal_output regression/test_damped_modal_output.py regression)
 boomdyn_script_test(postprocess.hoist_output postprocess/test_hoist_output.py postprocess)
+
+# docs/tutorial.md runs as written: its yaml blocks are docs/tutorial/boom.yaml,
+# every command exits 0 and prints the numbers the page shows (1 and 2 ranks).
+boomdyn_script_test(docs.tutorial docs/test_tutorial.py "docs;mpi")
+set_tests_properties(docs.tutorial PROPERTIES PROCESSORS 2
+  ENVIRONMENT "OMPI_ALLOW_RUN_AS_ROOT=1;OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1")

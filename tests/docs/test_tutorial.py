@@ -1,0 +1,179 @@
+#!/usr/bin/env python3
+"""docs/tutorial.md is a test (issue 39 item 3): its scene, commands and printed
+numbers cannot drift from what the program does.
+
+1. The ```yaml blocks of the page, in order, are the committed scene
+   docs/tutorial/boom.yaml, byte for byte.
+2. Every ```sh block (and ```python block) runs, command by command, in a scratch folder that mirrors
+   the source tree (docs/, postprocess/ and build/boomdyn link to this build's
+   files), so the commands run exactly as printed; each must exit 0.
+   `/usr/bin/python3` is replaced by this test's Python (BOOMDYN_PYTHON);
+   `mpiexec` runs as root where the tests do (OMPI_ALLOW_RUN_AS_ROOT).
+3. A ```text block right after a ```sh or ```python block is what those commands print:
+   each of its lines must appear in their output, in order (`...` lines skip
+   output). Text must match exactly; a number must agree to 0.1 % or one unit
+   in its last digit shown, whichever is larger; `< X` in the page stands for
+   a number below X (round-off that differs from machine to machine); `*`
+   stands for any one word (a wall time).
+Usage: test_tutorial.py BOOMDYN SOURCE_DIR BINARY_DIR"""
+import os
+import re
+import shutil
+import subprocess
+import sys
+import time
+
+sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+import script_checks  # noqa: E402
+
+RTOL = 1e-3
+# A number standing alone, not part of a name (j2, x86-64) or a version (0.1.0).
+TOKEN = re.compile(r"(?<![\w.])([-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?)(?![\w.])")
+
+
+def blocks(markdown):
+    """The fenced blocks of the page: [(info string, text, first line number)]."""
+    found, lines = [], markdown.splitlines(keepends=True)
+    k = 0
+    while k < len(lines):
+        m = re.match(r"^```(\S*)\s*$", lines[k])
+        if m:
+            start, body = k + 1, []
+            k += 1
+            while not lines[k].startswith("```"):
+                body.append(lines[k])
+                k += 1
+            found.append((m.group(1), "".join(body), start + 1))
+        k += 1
+    return found
+
+
+def commands(text):
+    """The commands of a sh block: comment and blank lines dropped, `\\` joins lines."""
+    out, current = [], ""
+    for line in text.splitlines():
+        if not current and (not line.strip() or line.lstrip().startswith("#")):
+            continue
+        current += line.rstrip()
+        if current.endswith("\\"):
+            current = current[:-1] + " "
+            continue
+        out.append(current)
+        current = ""
+    return out
+
+
+def number(text):
+    """(value, unit of its last digit) of a number as printed."""
+    mantissa, _, exponent = text.lower().partition("e")
+    decimals = len(mantissa.split(".")[1]) if "." in mantissa else 0
+    return float(text), 10.0 ** ((int(exponent) if exponent else 0) - decimals)
+
+
+def word_matches(expected, actual, bound=None):
+    """One whitespace-separated word: the same text around the same numbers
+    (within RTOL or one unit in the last digit shown), or, with `bound`, a
+    number below it in place of the expected one."""
+    e_parts, a_parts = TOKEN.split(expected), TOKEN.split(actual)
+    if len(e_parts) != len(a_parts):
+        return False
+    for k, (e, a) in enumerate(zip(e_parts, a_parts)):
+        if k % 2 == 0:  # text between numbers
+            if e != a:
+                return False
+        elif bound is not None:
+            if not float(a) < bound:
+                return False
+        else:
+            value, unit = number(e)
+            if abs(float(a) - value) > max(RTOL * abs(value), unit):
+                return False
+    return True
+
+
+def line_matches(expected, actual):
+    """Whether `actual` is `expected` within the rules of the docstring."""
+    e, a = expected.split(), actual.split()
+
+    def match(i, j):
+        if i == len(e):
+            return j == len(a)
+        if e[i] == "*":  # one or more words
+            return any(match(i + 1, k) for k in range(j + 1, len(a) + 1))
+        if e[i] == "<" and i + 1 < len(e):
+            return j < len(a) and word_matches(e[i + 1], a[j], number(TOKEN.findall(e[i + 1])[0])[0]) \
+                and match(i + 2, j + 1)
+        return j < len(a) and word_matches(e[i], a[j]) and match(i + 1, j + 1)
+    return match(0, 0)
+
+
+def check_output(expected_block, output, check, where):
+    actual = [line for line in output.splitlines() if line.strip()]
+    position = 0
+    for line in expected_block.splitlines():
+        if not line.strip() or line.strip() == "...":
+            continue
+        for k in range(position, len(actual)):
+            if line_matches(line, actual[k]):
+                position = k + 1
+                check(True, "%s: '%s'" % (where, line.strip()))
+                break
+        else:
+            check(False, "%s: '%s' not printed" % (where, line.strip()))
+
+
+def mirror(source, build_binary, work):
+    """A folder in which the page's relative paths (docs/, postprocess/, build/boomdyn) work."""
+    if os.path.isdir(work):
+        shutil.rmtree(work)
+    os.makedirs(os.path.join(work, "build"))
+    for name in ("docs", "postprocess"):
+        os.symlink(os.path.join(source, name), os.path.join(work, name))
+    os.symlink(os.path.abspath(build_binary), os.path.join(work, "build", "boomdyn"))
+
+
+def main():
+    boomdyn, source, binary = sys.argv[1:4]
+    page = open(os.path.join(source, "docs", "tutorial.md")).read()
+    found = blocks(page)
+    check = script_checks.checker(RESULTS)
+
+    scene = "".join(text for info, text, _ in found if info == "yaml")
+    committed = open(os.path.join(source, "docs", "tutorial", "boom.yaml")).read()
+    check(scene == committed, "the page's yaml blocks, in order, are docs/tutorial/boom.yaml")
+
+    work = os.path.join(binary, "test_output", "tutorial")
+    mirror(source, boomdyn, work)
+    env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1",
+               OMPI_MCA_rmaps_base_oversubscribe="1")
+    start = time.time()
+    ran = 0
+    for k, (info, text, line) in enumerate(found):
+        if info == "sh":
+            runs = [(command, ["bash", "-c", re.sub(r"(^|\s)/usr/bin/python3(?=\s)",
+                                                   lambda m: m.group(1) + sys.executable, command)], None)
+                    for command in commands(text)]
+        elif info == "python":
+            runs = [("the Python block", [sys.executable, "-"], text)]
+        else:
+            continue
+        output = ""
+        for what, argv, stdin in runs:
+            t0 = time.time()
+            done = subprocess.run(argv, cwd=work, env=env, input=stdin, stdout=subprocess.PIPE,
+                                  stderr=subprocess.STDOUT, text=True)
+            ran += 1
+            output += done.stdout
+            check(done.returncode == 0, "line %d: '%s' exits 0 (%d, %.1f s)" % (line, what, done.returncode,
+                                                                               time.time() - t0))
+            if done.returncode != 0:
+                print(done.stdout[-3000:])
+        if k + 1 < len(found) and found[k + 1][0] == "text":
+            check_output(found[k + 1][1], output, check, "line %d" % found[k + 1][2])
+    check(ran >= 6, "the page's sh blocks hold the tutorial's commands (%d run)" % ran)
+    print("commands took %.1f s" % (time.time() - start))
+
+
+RESULTS = []
+if __name__ == "__main__":
+    sys.exit(script_checks.finish(main, RESULTS))
