@@ -4,17 +4,21 @@ numbers cannot drift from what the program does.
 
 1. The ```yaml blocks of the page, in order, are the committed scene
    docs/tutorial/boom.yaml, byte for byte.
-2. Every ```sh block (and ```python block) runs, command by command, in a scratch folder that mirrors
-   the source tree (docs/, postprocess/ and build/boomdyn link to this build's
-   files), so the commands run exactly as printed; each must exit 0.
+2. Every ```sh block runs, command by command, and every ```python block as
+   one script, in a scratch folder that mirrors the source tree (docs/ and
+   postprocess/ link to the sources, build/boomdyn to this build's binary),
+   so the commands run exactly as printed; each must exit 0.
    `/usr/bin/python3` is replaced by this test's Python (BOOMDYN_PYTHON);
-   `mpiexec` runs as root where the tests do (OMPI_ALLOW_RUN_AS_ROOT).
-3. A ```text block right after a ```sh or ```python block is what those commands print:
-   each of its lines must appear in their output, in order (`...` lines skip
-   output). Text must match exactly; a number must agree to 0.1 % or one unit
-   in its last digit shown, whichever is larger; `< X` in the page stands for
-   a number below X (round-off that differs from machine to machine); `*`
-   stands for any one word (a wall time).
+   `mpiexec` may run as root (OMPI_ALLOW_RUN_AS_ROOT) and oversubscribe.
+3. A ```text block right after a ```sh or ```python block is what it prints:
+   each of its lines must appear in the output, in order (`...` lines stand
+   for output not shown). Words must match exactly, except that a number
+   must agree to 0.1 % or one unit in its last digit shown, whichever is
+   larger; `< X` stands for a number below X (round-off, which differs from
+   machine to machine) and `*` for one or more words (wall times).
+4. The page has no other kind of block (a ```bash block would escape the
+   test) and runs each step of the tutorial: one and two ranks, the Python
+   reader, the plots and the mesh study.
 Usage: test_tutorial.py BOOMDYN SOURCE_DIR BINARY_DIR"""
 import os
 import re
@@ -147,7 +151,6 @@ def main():
     env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1",
                OMPI_MCA_rmaps_base_oversubscribe="1")
     start = time.time()
-    ran = 0
     for k, (info, text, line) in enumerate(found):
         if info == "sh":
             runs = [(command, ["bash", "-c", re.sub(r"(^|\s)/usr/bin/python3(?=\s)",
@@ -162,7 +165,6 @@ def main():
             t0 = time.time()
             done = subprocess.run(argv, cwd=work, env=env, input=stdin, stdout=subprocess.PIPE,
                                   stderr=subprocess.STDOUT, text=True)
-            ran += 1
             output += done.stdout
             check(done.returncode == 0, "line %d: '%s' exits 0 (%d, %.1f s)" % (line, what, done.returncode,
                                                                                time.time() - t0))
@@ -170,7 +172,15 @@ def main():
                 print(done.stdout[-3000:])
         if k + 1 < len(found) and found[k + 1][0] == "text":
             check_output(found[k + 1][1], output, check, "line %d" % found[k + 1][2])
-    check(ran >= 6, "the page's sh blocks hold the tutorial's commands (%d run)" % ran)
+    kinds = sorted({info for info, _, _ in found} - {"yaml", "sh", "python", "text"})
+    check(not kinds, "the page's blocks are yaml, sh, python or text (others: %s)" % (kinds or "none"))
+    for step, pattern in (("a run", r"^build/boomdyn docs/tutorial/boom\.yaml"),
+                          ("a run on 2 ranks", r"^mpiexec -n 2 build/boomdyn docs/tutorial/boom\.yaml"),
+                          ("the results script", r"docs/tutorial/boom_results\.py"),
+                          ("the plots", r"postprocess/plot_run\.py"),
+                          ("the mesh study", r"postprocess/study\.py docs/tutorial/boom\.yaml --elements")):
+        present = any(re.search(pattern, c) for info, text, _ in found if info == "sh" for c in commands(text))
+        check(present, "the page runs %s" % step)
     print("commands took %.1f s" % (time.time() - start))
 
 
