@@ -92,7 +92,8 @@ def estimates(scene, static_tension):
     r = tip / (tip + rope_compliance)  # share of the payload's motion that is the boom's
     x = np.linspace(0, base["length"], 2001)
     s = np.linspace(0, fly["length"], 2001)
-    boom_mass = (np.trapz(base["rhoA"] * (base_w(x) / tip) ** 2, x) + np.trapz(fly["rhoA"] * (fly_w(s) / tip) ** 2, s))
+    integral = getattr(np, "trapezoid", None) or np.trapz  # numpy >= 2 renamed it
+    boom_mass = integral(base["rhoA"] * (base_w(x) / tip) ** 2, x) + integral(fly["rhoA"] * (fly_w(s) / tip) ** 2, s)
     k = 1 / (tip + rope_compliance)
     bounce = math.sqrt(k / (mass + r**2 * boom_mass)) / (2 * math.pi)
     g = math.hypot(*(float(v) for v in scene.get("gravity", [0, 0])))
@@ -102,8 +103,8 @@ def estimates(scene, static_tension):
     # its middle.
     root_moment = g * (mass * (fly["origin"] + fly["length"])
                        + sum(b["rhoA"] * b["length"] * (b["origin"] + b["length"] / 2) for b in (base, fly)))
-    return {"tip_stiffness": 1 / tip, "root_moment": root_moment, "rope_stiffness": 1 / rope_compliance, "boom_mass": boom_mass,
-            "bounce": bounce, "pendulum": pendulum}
+    return {"tip_stiffness": 1 / tip, "rope_stiffness": 1 / rope_compliance, "boom_mass": boom_mass,
+            "root_moment": root_moment, "bounce": bounce, "pendulum": pendulum}
 
 
 def summary(path):
@@ -138,7 +139,8 @@ def report(run):
                                                          1e3 * np.abs(hook[:, 0] - tip[:, 0]).max()))
     print("  pendulum %.4f Hz, bounce %.3f Hz" % (f1[0], f1[1]))
     k = int(np.argmax(tension))
-    print("  peak rope tension %.1f N at t = %.3f s (dynamic factor %.3f)" % (tension[k], t[k], tension[k] / tension[0]))
+    print("  peak rope tension %.1f N at t = %.3f s (dynamic factor %.3f)"
+          % (tension[k], t[k], tension[k] / tension[0]))
     print("  peak root moment %.1f kN m" % (1e-3 * run["peak_root_moment"]))
     e = estimates(run["scene"], tension[0])
     print("closed form, retracted (t = 0):")
