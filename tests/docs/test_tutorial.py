@@ -20,6 +20,8 @@ numbers cannot drift from what the program does.
    right: the tip stiffness of docs/tutorial/boom_results.py's
    telescope_compliance (Euler-Bernoulli) against a static boomdyn run of
    the tutorial's two booms under a small tip load, rigid joints, no gravity.
+   And plot_run.py's contact forces of the padded joints peak at the run's
+   design numbers (the pad forces, not another constraint's multiplier).
 5. The page has no other kind of block (a ```bash block would escape the
    test) and runs each step of the tutorial: one and two ranks, the Python
    reader, the plots and the mesh study.
@@ -30,6 +32,8 @@ import shutil
 import subprocess
 import sys
 import time
+
+import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 import script_checks  # noqa: E402
@@ -181,6 +185,20 @@ def check_tip_stiffness(boomdyn, source, work, check):
           % (100 / deflection, 1 / compliance, error))
 
 
+def check_pad_forces(source, work, check):
+    """plot_run.py's contact-force plot shows the pads' forces (a padded
+    sliding joint has one multiplier row, so its 'second row' would be the
+    next constraint's): the peaks are the design numbers of the run."""
+    import h5py
+    sys.path.insert(0, os.path.join(source, "postprocess"))
+    import plot_run
+    with h5py.File(os.path.join(work, "tutorial_out", "boom.h5"), "r") as f:
+        for joint, force in plot_run.normal_forces(f).items():
+            peak = f["summary"].attrs["design.joint_resultants.%s.peak_normal_force_N" % joint]
+            check(abs(np.abs(force).max() - peak) <= 1e-9 * peak,
+                  "plot_run.py: pad '%s' peaks at %.1f N, its design number %.1f N" % (joint, np.abs(force).max(), peak))
+
+
 def main():
     boomdyn, source, binary = sys.argv[1:4]
     page = open(os.path.join(source, "docs", "tutorial.md")).read()
@@ -218,6 +236,7 @@ def main():
         if k + 1 < len(found) and found[k + 1][0] == "text":
             check_output(found[k + 1][1], output, check, "line %d" % found[k + 1][2])
     check_tip_stiffness(boomdyn, source, work, check)
+    check_pad_forces(source, work, check)
     kinds = sorted({info for info, _, _ in found} - {"yaml", "sh", "python", "text"})
     check(not kinds, "the page's blocks are yaml, sh, python or text (others: %s)" % (kinds or "none"))
     for step, pattern in (("a run", r"^build/boomdyn docs/tutorial/boom\.yaml"),
