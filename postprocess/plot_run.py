@@ -188,6 +188,27 @@ def _names(f, path):
     return [x.decode() if isinstance(x, bytes) else str(x) for x in f[path][()]] if path in f else []
 
 
+def normal_forces(f):
+    """{sliding joint: normal force per step (N)}: the channel
+    joint_resultants/<joint>/normal_force (a rigid joint's lambda_n, a padded
+    joint's pad force), else lambda_n, the second multiplier row of a rigid
+    joint (a padded joint has one row only; its next row is another
+    constraint's)."""
+    joints = _names(f, "/layout/sliding_joint_names")
+    channels = _names(f, "/layout/output_names")
+    forces = {}
+    for j in joints:
+        channel = "joint_resultants/%s/normal_force" % j
+        if channel in channels and "steps/outputs" in f:
+            forces[j] = f["steps/outputs"][:, channels.index(channel)]
+        elif "steps/lambda" in f:
+            names = _names(f, "/layout/constraint_names")
+            k = names.index(j)
+            if f["layout/constraint_num_rows"][k] == 2:
+                forces[j] = f["steps/lambda"][:, f["layout/constraint_first_row"][k] + 1]
+    return forces
+
+
 def joint_plots(plotter, f):
     """Moving-frame deflection, slack coordinates, normal contact forces and rope tension (when present)."""
     if "steps/time" not in f:
@@ -224,17 +245,13 @@ def joint_plots(plotter, f):
         ax.grid(True)
         ax.legend(loc="best", fontsize="small")
         plotter.save(fig, name, title)
-    # Normal contact force lambda_n: the second row of each sliding joint.
-    joints = _names(f, "/layout/sliding_joint_names")
-    if joints and "steps/lambda" in f:
-        names = _names(f, "/layout/constraint_names")
-        first = f["layout/constraint_first_row"][()]
-        lam = f["steps/lambda"][()]
+    forces = normal_forces(f)
+    if forces:
         fig, (ax,) = plotter.figure()
-        for j in joints:
-            ax.plot(t[: len(lam)], lam[:, first[names.index(j)] + 1], label=j)
+        for j, force in forces.items():
+            ax.plot(t[: len(force)], force, label=j)
         ax.set_xlabel(plotter.time_axis)
-        ax.set_ylabel("normal force lambda_n [N]")
+        ax.set_ylabel("normal force [N]")
         ax.grid(True)
         ax.legend(loc="best", fontsize="small")
         plotter.save(fig, "contact_forces", "normal contact forces of the sliding joints")

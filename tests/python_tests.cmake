@@ -95,3 +95,9 @@ add_test(NAME docs.options_match_help_self_test
   COMMAND ${python} ${CMAKE_SOURCE_DIR}/tests/docs/check_options.py --self-test $<TARGET_FILE:boomdyn>
           ${CMAKE_SOURCE_DIR} ${CMAKE_BINARY_DIR}/test_output/options_help)
 set_tests_properties(docs.options_match_help_self_test PROPERTIES LABELS docs)
+
+# docs/tutorial.md runs as written: its yaml blocks are docs/tutorial/boom.yaml,
+# every command exits 0 and prints the numbers the page shows (1 and 2 ranks).
+boomdyn_script_test(docs.tutorial docs/test_tutorial.py "docs;mpi")
+set_tests_properties(docs.tutorial PROPERTIES PROCESSORS 2
+  ENVIRONMENT "OMPI_ALLOW_RUN_AS_ROOT=1;OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1")
