@@ -408,8 +408,12 @@ Hdf5File::Hdf5File(const std::string &path, bool overwrite) : impl_(std::make_un
   // creation that fails, a full disk, leaves nothing behind) and moved into
   // place, so that a process still writing the old file (without locks)
   // writes to its own, unlinked copy and notices at the end (stillAtPath).
+  // A device, FIFO, socket or folder at the path is never replaced; a
+  // symbolic link is written through (the link stays).
+  refuseSpecialFile(path, "output file");
+  const std::string placement = placementPath(path);
   if (overwrite) refuseFileInUse(path);
-  const std::string temporary = temporaryName(path);
+  const std::string temporary = temporaryName(placement);
   const hid_t created = H5Fcreate(temporary.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, access.get());
   if (created < 0) {
     std::remove(temporary.c_str());
@@ -417,7 +421,7 @@ Hdf5File::Hdf5File(const std::string &path, bool overwrite) : impl_(std::make_un
   }
   impl.file = Handle(created, H5Fclose);
   try {
-    placeFile(temporary, path, overwrite);
+    placeFile(temporary, placement, overwrite);
   } catch (...) {
     impl.file.reset();
     throw;
