@@ -62,6 +62,17 @@ def status(h5):
         return None, str(e), 0
 
 
+def summary_status(h5):
+    """/summary/status alone (a file may have no /steps), or why there is none."""
+    try:
+        import h5py
+        with h5py.File(h5, "r") as f:
+            s = f["summary"].attrs.get("status") if "summary" in f else None
+            return (s.decode() if isinstance(s, bytes) else s) or "no /summary/status"
+    except Exception as e:  # noqa: BLE001 (an unreadable file is the finding)
+        return "unreadable: %s" % e
+
+
 def quick(*extra):
     return ["-o", path("r.h5"), "-boom_overwrite", "-boom_quiet", *extra]
 
@@ -416,6 +427,30 @@ def full_disk_checkpoint(shim_only):
         check(s is not None and s.startswith("failed"), "the results say the run failed (%s, %s rows)" % (s, rows))
         check(sorted(os.listdir(mnt)) == ["filler"], "no half-written checkpoint or .tmp left: %s" % os.listdir(mnt))
     with_small_fs("3m", body, shim_only)
+
+
+def case_full_disk_status_shim():
+    """A file system that is (nearly) full when the run starts: a results file
+    is only started with 256 kB free, and one that was started always ends with
+    /summary/status = failed: ... (with 260 kB free the file was left without
+    /summary: its first flush failed and it was closed as it was)."""
+    def body(folder):
+        for left_kb in [8, 200, 260, 300, 400]:
+            for name in os.listdir(folder):
+                os.remove(os.path.join(folder, name))
+            with open(os.path.join(folder, "filler"), "wb") as f:
+                f.write(b"\0" * (3 * 1024 * 1024 - left_kb * 1024))
+            out = os.path.join(folder, "r.h5")
+            rc, text = run(["-o", out, "-boom_quiet", "-ts_max_time", "1", "-boom_checkpoint", path("c.chk.h5")],
+                           timeout=60)
+            check(rc == 1 and "file system is full" in last_line(text),
+                  "%d kB free: exit 1 saying the file system is full (exit %s): %s" % (left_kb, rc, last_line(text)[:150]))
+            s = summary_status(out) if os.path.exists(out) else "no file"
+            check(s == "no file" or s.startswith("failed"),
+                  "%d kB free: no results file, or one that says it failed (%s)" % (left_kb, s))
+            left = [n for n in os.listdir(folder) if ".tmp" in n]
+            check(left == [], "no temporary file left: %s" % left)
+    with_small_fs("3m", body, True)
 
 
 def case_full_disk_results():
