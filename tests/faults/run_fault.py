@@ -618,6 +618,17 @@ def case_restart_formulation_mismatch():
         rc, out = restart(chk, option, value)
         check(rc == 0, "%s %s (the same equations, solved otherwise) restarts (exit %s): %s"
               % (option, value, rc, last_line(out)[:120]))
+    # Two beams with their element counts swapped: the same number of unknowns, another mesh.
+    two = os.path.join(source, "inputs", "two_beams_pinned.yaml")
+    chk2 = path("two.chk.h5")
+    rc, out = run(quick("-ts_max_time", "0.02", "-boom_checkpoint_interval", "0.01", "-boom_checkpoint", chk2),
+                  scene_file=two)
+    check(rc == 0 and os.path.exists(chk2), "a checkpoint of two_beams_pinned (exit %s)" % rc)
+    rc, out = run(["-o", path("restarted.h5"), "-boom_overwrite", "-boom_quiet", "-boom_restart", chk2,
+                   "-boom_checkpoint", path("next.chk.h5"), "-ts_max_time", "0.03", "-boom_elements_inner", "6",
+                   "-boom_elements_outer", "8"], scene_file=two)
+    check(rc == 1 and "beam 'inner') = 8, this run has 6" in last_line(out),
+          "8 + 6 elements swapped to 6 + 8 are refused: " + last_line(out)[:160])
 
 
 def case_restart_options_mismatch():
