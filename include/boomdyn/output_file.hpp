@@ -21,6 +21,19 @@ std::string temporaryName(const std::string &path);
 // link, or a rename after one more check where the file system has none).
 // On failure removes the temporary and throws std::runtime_error naming path.
 void placeFile(const std::string &temporary, const std::string &path, bool overwrite);
+// What path is when it exists and is not a regular file (following
+// symbolic links): "a character device", "a block device", "a FIFO (named
+// pipe)", "a socket", "a folder"; empty for a regular file or no file. A
+// rename onto such a path would remove it (as root: /dev/null replaced by
+// a results file), so nothing is ever placed there.
+std::string specialFileKind(const std::string &path);
+// Throws std::runtime_error naming `what` (e.g. "output file") and path
+// when specialFileKind(path) is not empty.
+void refuseSpecialFile(const std::string &path, const std::string &what);
+// Where a file written to path is put: path itself, or for a symbolic link
+// the file it points to (the link stays, as with `cp x link`; a rename
+// onto the link would replace the link).
+std::string placementPath(const std::string &path);
 // Free bytes on the file system of path's folder (-1: unknown).
 double freeBytes(const std::string &path);
 

@@ -47,8 +47,8 @@ struct KeySchema {
   Need need = Need::Optional;
   std::string other;       // the key that Need::RequiredWith/RequiredWithout refers to
   Limit limit = Limit::None;
-  int minInt = 0, maxInt = 0; // Integer: allowed range
-  std::string tooLarge;       // Integer: why the upper limit exists ("mesh too large"), for the message
+  int minInt = 0, maxInt = 0; // Integer: allowed range; MapList: at most maxInt items (0: any number)
+  std::string tooLarge;       // Integer, MapList: why the upper limit exists ("mesh too large"), for the message
   // Optional keys: the value used when the key is absent (Number only;
   // hasDefault false: the key stays absent and the builder derives it).
   bool hasDefault = false;

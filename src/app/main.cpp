@@ -7,6 +7,7 @@
 // the error reporting; options.cpp reads the options, run.cpp builds the
 // Simulation (include/boomdyn/simulation.hpp).
 #include "options.hpp"
+#include "out_of_memory.hpp"
 #include "run.hpp"
 #include "signals.hpp"
 
@@ -21,6 +22,7 @@
 #include <cstdlib>
 #include <exception>
 #include <memory>
+#include <new>
 #include <string>
 #include <thread>
 #include <vector>
@@ -45,7 +47,10 @@ PetscErrorCode keepFirstError(MPI_Comm, int line, const char *function, const ch
     const char *text = nullptr;
     PetscErrorMessage(n, &text, nullptr);
     firstPetscError = message && *message ? message : (text ? text : "PETSc error");
-    firstPetscErrorCode = n;
+    // PETSc 3.18's allocator reports a failed malloc with the caller's line
+    // as the error code: it is known by where it arose.
+    const bool allocation = n == PETSC_ERR_MEM || (function && std::string(function) == "PetscMallocAlign");
+    firstPetscErrorCode = allocation ? PETSC_ERR_MEM : n;
     // User errors (bad options, scene, model; the io layer's exceptions,
     // which cross into PETSc code in src/app and src/simulation) say all
     // there is to say; other errors name where they arose.
@@ -69,8 +74,10 @@ std::string aboutScene(const std::string &message, const std::string &scene)
 std::string errorLine(const std::string &scene)
 {
   std::string message = firstPetscError;
-  if (firstPetscErrorCode == PETSC_ERR_MEM || message.find("std::bad_alloc") != std::string::npos)
-    message = "out of memory: the scene needs more memory than this machine has (a mesh too large? see -boom_elements)";
+  if (firstPetscErrorCode == PETSC_ERR_MEM) // with where it happened, which may help
+    message = boomdyn::outOfMemoryMessage(boomdyn::petscRequestedBytes(firstPetscError)) + " (at: " + message + ")";
+  else if (message.find("std::bad_alloc") != std::string::npos) // through PetscCallCXX
+    message = boomdyn::outOfMemoryMessage(boomdyn::lastFailedAllocation());
   return "boomdyn: error: " + aboutScene(message, scene);
 }
 
@@ -177,7 +184,21 @@ int main(int argc, char **argv)
   boomdyn::AppOptions opts;
   std::string line;
   int code = 0;
-  if (runProgram(argc, argv, &opts, &line, &code)) {
+  PetscErrorCode failed;
+  // C++ exceptions that no PetscCallCXX turned into an error code (a
+  // std::bad_alloc in the Jacobian pattern of a mesh too large for the
+  // address space) end here, not in std::terminate (exit 134, no message).
+  try {
+    failed = runProgram(argc, argv, &opts, &line, &code);
+  } catch (const std::bad_alloc &) {
+    failed = PETSC_ERR_MEM;
+    firstPetscError = boomdyn::outOfMemoryMessage(boomdyn::lastFailedAllocation());
+    firstPetscErrorCode = 0;
+  } catch (const std::exception &e) {
+    failed = PETSC_ERR_LIB;
+    if (firstPetscError.empty()) firstPetscError = std::string("internal error: ") + e.what();
+  }
+  if (failed) {
     line = errorLine(opts.scenePath);
     code = 1;
   }

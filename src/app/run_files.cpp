@@ -6,6 +6,8 @@
 // yet.
 #include "options.hpp"
 
+#include "boomdyn/output_file.hpp"
+
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -43,11 +45,33 @@ PetscErrorCode checkRunFiles(const AppOptions &opts, bool dynamic)
     if (!dynamic && std::string(option) == "-boom_checkpoint") continue; // written by dynamic runs only
     PetscCheck(!std::filesystem::is_directory(path, ignored), comm, PETSC_ERR_USER_INPUT,
                "%s %s: is a folder; give a file name (e.g. %s/run.h5)", option, path.c_str(), path.c_str());
+    // A rename onto a device (as root: -o /dev/null), FIFO or socket would
+    // replace it by a results file; the io layer refuses too, this says which option.
+    const std::string kind = specialFileKind(path);
+    PetscCheck(kind.empty(), comm, PETSC_ERR_USER_INPUT,
+               "%s %s: is %s, not a regular file; it is left as it is: give the name of a regular file", option,
+               path.c_str(), kind.c_str());
     PetscCheck(!sameFile(path, opts.scenePath), comm, PETSC_ERR_USER_INPUT,
                "%s %s is the scene file: it would be overwritten", option, path.c_str());
     PetscCheck(!sameFile(path, opts.restartPath) || std::string(option) == "-boom_checkpoint", comm,
                PETSC_ERR_USER_INPUT, "%s %s is the restart file (-boom_restart): it would be overwritten", option,
                path.c_str());
+  }
+  // The XDMF descriptions next to the results (RUN.xmf, RUN.ropes.xmf) are replaced by rename too.
+  const std::string &out = opts.outputPath; // the stem as ResultsWriter::writeXdmf takes it
+  const std::string stem = out.size() > 3 && out.compare(out.size() - 3, 3, ".h5") == 0 ? out.substr(0, out.size() - 3) : out;
+  for (const std::string &xdmf : {stem + ".xmf", stem + ".ropes.xmf"}) {
+    const std::string kind = specialFileKind(xdmf);
+    PetscCheck(kind.empty(), comm, PETSC_ERR_USER_INPUT,
+               "-o %s: its XDMF file %s is %s, not a regular file; it is left as it is: choose another -o",
+               opts.outputPath.c_str(), xdmf.c_str(), kind.c_str());
+  }
+  // A restart file is read whole: a FIFO would block the run, a device give garbage.
+  if (dynamic && !opts.restartPath.empty()) {
+    const std::string kind = specialFileKind(opts.restartPath);
+    PetscCheck(kind.empty(), comm, PETSC_ERR_USER_INPUT,
+               "-boom_restart %s: is %s, not a regular file: give a checkpoint file written by boomdyn",
+               opts.restartPath.c_str(), kind.c_str());
   }
   PetscCheck(!dynamic || !sameFile(opts.outputPath, opts.checkpointPath), comm, PETSC_ERR_USER_INPUT,
              "-o %s is the checkpoint file (-boom_checkpoint): give them different names", opts.outputPath.c_str());

@@ -131,6 +131,10 @@ void buildElasticRope(const ComponentSpec &spec, ModelBuilder &b)
 
 } // namespace
 
+// Sheaves of one rope: 8 coordinates per sheave on a beam element, a
+// dense block of (8 n)^2 entries: 5 MB at 100, 51 GB at 10^4.
+constexpr int kMaxSheaves = 100;
+
 // One sheave of the list form `pulleys: [{body, at}, ...]`.
 const TypeSchema &sheaveSchema()
 {
@@ -161,8 +165,11 @@ PhysicsType elasticRopeType()
       key("pulley2", ValueKind::Body, "", Need::Optional, "body that carries a second pulley, after the first"),
       atKey("pulley2_at", "pulley2", "material point of the second pulley").requiredWith("pulley2"),
       key("pulleys", ValueKind::MapList, "", Need::Optional,
-          "any number of sheaves [{body, at}, ...] in the order the rope runs over them (instead of pulley/pulley2)")
-          .holding(sheaveSchema()),
+          "sheaves [{body, at}, ...] in the order the rope runs over them (instead of pulley/pulley2)")
+          .holding(sheaveSchema())
+          .between(1, kMaxSheaves)
+          .tooLargeMeans("the rope couples every sheave's body coordinates with every other's, so its Jacobian "
+                         "block grows with the square of their number (a real reeving has a few dozen)"),
       bodyKey("to", "body of the rope's far end"),
       atKey("to_at", "to", "material point of the far end"),
       key("EA", ValueKind::Number, "N", Need::Required, "axial stiffness of the rope (metallic area times the rope's "

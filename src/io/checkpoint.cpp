@@ -3,10 +3,13 @@
 #include "boomdyn/gather.hpp"
 
 #include "boomdyn/hdf5_file.hpp"
+#include "boomdyn/output_file.hpp"
 
 #include <hdf5.h>
 
 #include <cmath>
+#include <cstdint>
+#include <map>
 #include <cstdio>
 #include <stdexcept>
 
@@ -49,6 +52,46 @@ std::vector<std::string> readStrings(hid_t file, const std::string &path)
   return out;
 }
 
+// FNV-1a (64 bit) of everything a checkpoint holds, in one fixed order:
+// the scene text, then every scalar, array and vector by name (sorted),
+// each name and sequence preceded by its length in 8 bytes, numbers as
+// their 8 bytes (little-endian IEEE). It finds a damaged or edited file;
+// it is no protection against a forgery (anyone can recompute it).
+// tests/faults/run_fault.py recomputes it in Python.
+class Fnv1a {
+public:
+  void bytes(const void *data, std::size_t n)
+  {
+    const auto *p = static_cast<const unsigned char *>(data);
+    for (std::size_t i = 0; i < n; ++i) h_ = (h_ ^ p[i]) * 1099511628211ull;
+  }
+  void count(std::uint64_t n) { bytes(&n, sizeof n); }
+  void text(const std::string &s) { count(s.size()), bytes(s.data(), s.size()); }
+  void numbers(const std::vector<double> &v) { count(v.size()), bytes(v.data(), v.size() * sizeof(double)); }
+  std::string hex() const
+  {
+    char out[17];
+    std::snprintf(out, sizeof out, "%016llx", static_cast<unsigned long long>(h_));
+    return out;
+  }
+
+private:
+  std::uint64_t h_ = 14695981039346656037ull;
+};
+
+std::string contentChecksum(const std::string &sceneText, const std::map<std::string, double> &scalars,
+                            const std::map<std::string, std::vector<double>> &arrays,
+                            const std::map<std::string, std::vector<double>> &vectors)
+{
+  static_assert(sizeof(double) == 8, "8-byte doubles");
+  Fnv1a h;
+  h.text(sceneText);
+  for (const auto &[n, v] : scalars) h.text(n), h.numbers({v});
+  for (const auto &[n, v] : arrays) h.text(n), h.numbers(v);
+  for (const auto &[n, v] : vectors) h.text(n), h.numbers(v);
+  return h.hex();
+}
+
 } // namespace
 
 PetscErrorCode CheckpointWriter::addVector(const std::string &name, Vec v)
@@ -67,10 +110,12 @@ PetscErrorCode CheckpointWriter::write(const std::string &path, const std::strin
   PetscCallMPI(MPI_Comm_rank(comm_, &rank));
   if (rank == 0) {
     try {
-      const std::string tmp = path + ".tmp";
+      refuseSpecialFile(path, "checkpoint file");
+      const std::string placement = placementPath(path), tmp = placement + ".tmp";
       {
         Hdf5File f(tmp, true);
         f.writeString("/scene_text", sceneText);
+        f.writeString("/checksum", contentChecksum(sceneText, scalars_, arrays_, vectors_));
         std::vector<std::string> names;
         std::vector<double> values;
         for (const auto &[n, v] : scalars_) names.push_back(n), values.push_back(v);
@@ -93,11 +138,14 @@ PetscErrorCode CheckpointWriter::write(const std::string &path, const std::strin
         f.writeStrings("/vector_names", names.empty() ? std::vector<std::string>{"none"} : names);
         f.close();
       }
-      if (std::rename(tmp.c_str(), path.c_str()) != 0) throw std::runtime_error("cannot rename " + tmp + " to " + path);
+      refuseSpecialFile(placement, "checkpoint file"); // checked last before the rename
+      if (std::rename(tmp.c_str(), placement.c_str()) != 0)
+        throw std::runtime_error("cannot rename " + tmp + " to " + placement);
     } catch (const std::exception &e) {
       ok = 0;
       std::snprintf(message, sizeof message, "%s", e.what());
-      std::remove((path + ".tmp").c_str()); // a half-written checkpoint (a full disk) is not left behind
+      const std::string tmp = placementPath(path) + ".tmp";
+      if (specialFileKind(tmp).empty()) std::remove(tmp.c_str()); // a half-written checkpoint (a full disk) is not left behind
     }
   }
   PetscCallMPI(MPI_Bcast(&ok, 1, MPI_INT, 0, comm_));
@@ -130,6 +178,7 @@ PetscErrorCode CheckpointReader::read(const std::string &path)
   char message[512] = "";
   std::vector<std::string> scalarNames, arrayNames, vectorNames;
   std::vector<double> scalarValues;
+  std::string stored; // the checksum written with the contents
   PetscFunctionBeginUser;
   path_ = path;
   PetscCallMPI(MPI_Comm_rank(comm_, &rank));
@@ -149,6 +198,7 @@ PetscErrorCode CheckpointReader::read(const std::string &path)
         }
       for (const auto &n : vectorNames)
         if (n != "none") vectors_[n] = readDoubles(file, "/vectors/" + n);
+      if (H5Lexists(file, "/checksum", H5P_DEFAULT) > 0) stored = readStrings(file, "/checksum").at(0);
     } catch (const std::exception &e) {
       ok = 0;
       std::snprintf(message, sizeof message, "%s (not a boomdyn checkpoint?)", e.what());
@@ -158,6 +208,23 @@ PetscErrorCode CheckpointReader::read(const std::string &path)
     if (ok) {
       const std::string bad = firstNonFinite(scalarNames, scalarValues);
       if (!bad.empty()) ok = 0, std::snprintf(message, sizeof message, "%s: the checkpoint is damaged", bad.c_str());
+    }
+    // A state edited or damaged so that it still satisfies the constraints
+    // (a free coordinate moved) would continue silently from it.
+    if (ok) {
+      std::map<std::string, double> scalars;
+      for (std::size_t i = 0; i < scalarNames.size() && i < scalarValues.size(); ++i)
+        if (scalarNames[i] != "none") scalars[scalarNames[i]] = scalarValues[i];
+      const std::string computed = contentChecksum(sceneText_, scalars, arrays_, vectors_);
+      if (stored.empty())
+        ok = 0, std::snprintf(message, sizeof message,
+                              "it holds no checksum (written by a boomdyn without checkpoint checksums), so its "
+                              "contents cannot be verified; start the run again from t = 0");
+      else if (computed != stored)
+        ok = 0, std::snprintf(message, sizeof message,
+                              "its contents do not match the checksum written with them (%s, computed %s): the "
+                              "checkpoint was damaged or edited after it was written",
+                              stored.c_str(), computed.c_str());
     }
   }
   PetscCallMPI(MPI_Bcast(&ok, 1, MPI_INT, 0, comm_));

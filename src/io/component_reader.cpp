@@ -249,6 +249,9 @@ void ComponentReader::readValue(const Field &f, const KeySchema &k, const std::s
     }
     if (!f.node.IsSequence() || f.node.size() == 0)
       report_.fail(f, "must be a non-empty list of maps [{...}, ...]");
+    if (k.maxInt > 0 && f.node.size() > static_cast<std::size_t>(k.maxInt))
+      report_.fail(f, "has " + std::to_string(f.node.size()) + " items, more than the limit of " +
+                          std::to_string(k.maxInt) + (k.tooLarge.empty() ? "" : ": " + k.tooLarge));
     ComponentSpec list(k.nested->type, spec.name + "." + k.key);
     list.mark = report_.sourceMark(f);
     for (std::size_t i = 0; i < f.node.size(); ++i) {

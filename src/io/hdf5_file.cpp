@@ -408,8 +408,19 @@ Hdf5File::Hdf5File(const std::string &path, bool overwrite) : impl_(std::make_un
   // creation that fails, a full disk, leaves nothing behind) and moved into
   // place, so that a process still writing the old file (without locks)
   // writes to its own, unlinked copy and notices at the end (stillAtPath).
+  // A device, FIFO, socket or folder at the path is never replaced; a
+  // symbolic link is written through (the link stays).
+  refuseSpecialFile(path, "output file");
+  const std::string placement = placementPath(path);
+  // A file started on a file system without room for its metadata could be
+  // neither finished nor closed with a status: none is created.
+  if (const double available = freeBytes(placement); available >= 0 && available < Impl::kReserve)
+    throw std::runtime_error("HDF5 file '" + path + "': the file system is full (" +
+                             std::to_string(static_cast<long long>(available / 1024)) + " kB free, " +
+                             std::to_string(static_cast<long long>(Impl::kReserve / 1024)) +
+                             " kB are needed to start a file); nothing was written");
   if (overwrite) refuseFileInUse(path);
-  const std::string temporary = temporaryName(path);
+  const std::string temporary = temporaryName(placement);
   const hid_t created = H5Fcreate(temporary.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, access.get());
   if (created < 0) {
     std::remove(temporary.c_str());
@@ -417,7 +428,7 @@ Hdf5File::Hdf5File(const std::string &path, bool overwrite) : impl_(std::make_un
   }
   impl.file = Handle(created, H5Fclose);
   try {
-    placeFile(temporary, path, overwrite);
+    placeFile(temporary, placement, overwrite);
   } catch (...) {
     impl.file.reset();
     throw;

@@ -27,10 +27,45 @@ void refuseFileInUse(const std::string &path)
                              "left as it is: choose another -o, or wait for that run to end");
 }
 
+std::string specialFileKind(const std::string &path)
+{
+  struct stat s;
+  if (::stat(path.c_str(), &s) != 0 || S_ISREG(s.st_mode)) return "";
+  if (S_ISCHR(s.st_mode)) return "a character device";
+  if (S_ISBLK(s.st_mode)) return "a block device";
+  if (S_ISFIFO(s.st_mode)) return "a FIFO (named pipe)";
+  if (S_ISSOCK(s.st_mode)) return "a socket";
+  if (S_ISDIR(s.st_mode)) return "a folder";
+  return "not a regular file";
+}
+
+void refuseSpecialFile(const std::string &path, const std::string &what)
+{
+  const std::string kind = specialFileKind(path);
+  if (!kind.empty())
+    throw std::runtime_error(what + " '" + path + "' is " + kind + ", not a regular file: it was left as it is; give "
+                             "the name of a regular file");
+}
+
+std::string placementPath(const std::string &path)
+{
+  struct stat s;
+  if (::lstat(path.c_str(), &s) != 0 || !S_ISLNK(s.st_mode)) return path;
+  std::error_code e;
+  const std::filesystem::path target = std::filesystem::weakly_canonical(path, e);
+  return e ? path : target.string();
+}
+
 std::string temporaryName(const std::string &path) { return path + ".tmp" + std::to_string(::getpid()); }
 
 void placeFile(const std::string &temporary, const std::string &path, bool overwrite)
 {
+  try { // checked last before the rename, whatever the caller checked before
+    refuseSpecialFile(path, "output file");
+  } catch (...) {
+    std::remove(temporary.c_str());
+    throw;
+  }
   int placed = overwrite ? std::rename(temporary.c_str(), path.c_str()) : ::link(temporary.c_str(), path.c_str());
   if (placed != 0 && !overwrite && errno != EEXIST) {
     // A file system without hard links (FAT, some network mounts): rename,

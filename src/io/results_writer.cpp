@@ -65,6 +65,10 @@ const std::string kStepTime = "/steps/time", kStepDt = "/steps/dt", kStepIterati
                   kStepFrameDeflection = "/steps/frame_deflection", kStepOutputs = "/steps/outputs";
 } // namespace
 
+namespace {
+const char *const kRunningStatus = "running: the run had not ended when this was written (killed?)";
+} // namespace
+
 ResultsWriter::~ResultsWriter()
 {
   // Left without finish() (an error unwound the run): the rows written so far
@@ -100,6 +104,9 @@ PetscErrorCode ResultsWriter::open(const std::string &path, bool overwrite, cons
       file_->setAttribute("/", "petsc_options", info.petscOptions);
       file_->setAttribute("/", "created_utc", utcNow());
       file_->setAttribute("/", "mpi_ranks", static_cast<long long>(info.ranks));
+      // Replaced at the end (completed, failed: ..., interrupted); a file
+      // that still says this was left by a run that was killed.
+      file_->setAttribute("/summary", "status", std::string(kRunningStatus));
       file_->writeString("/scene/text", sc.text);
       file_->setAttribute("/layout", "nq", static_cast<long long>(model_.numCoordinates()));
       file_->setAttribute("/layout", "nlambda", static_cast<long long>(model_.numMultipliers()));
@@ -153,6 +160,10 @@ PetscErrorCode ResultsWriter::open(const std::string &path, bool overwrite, cons
     } catch (const std::exception &e) {
       ok = 0;
       error = e.what();
+      try { // a file that was created says why it has no results
+        if (file_ && file_->isOpen()) file_->setAttribute("/summary", "status", "failed: " + error), file_->close();
+      } catch (...) {
+      }
       file_.reset();
     }
   }

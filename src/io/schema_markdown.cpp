@@ -68,6 +68,7 @@ std::string kindText(const KeySchema &k)
 std::string limitText(const KeySchema &k)
 {
   if (k.kind == ValueKind::Integer) return std::to_string(k.minInt) + " to " + std::to_string(k.maxInt);
+  if (k.kind == ValueKind::MapList && k.maxInt > 0) return "1 to " + std::to_string(k.maxInt) + " items";
   if (k.limit == Limit::Positive) return "> 0";
   if (k.limit == Limit::NonNegative) return ">= 0";
   return "";

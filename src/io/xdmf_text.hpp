@@ -5,6 +5,8 @@
 // snapshot.
 #pragma once
 
+#include "boomdyn/output_file.hpp"
+
 #include <cstddef>
 #include <cstdio>
 #include <fstream>
@@ -41,7 +43,11 @@ inline std::string polylineGridBegin(const std::string &name, double time, std::
 // full disk) keeps the previous file instead of leaving an empty one.
 inline void writeFileReplacing(const std::string &path, const std::string &text)
 {
-  const std::string tmp = path + ".tmp";
+  // Never a rename onto a device, FIFO, socket or folder (nor opening a FIFO
+  // as the temporary: that would block); a symbolic link is written through.
+  const std::string target = placementPath(path), tmp = target + ".tmp";
+  refuseSpecialFile(path, "XDMF file");
+  refuseSpecialFile(tmp, "XDMF file's temporary");
   std::ofstream out(tmp);
   out << text;
   out.close();
@@ -49,7 +55,7 @@ inline void writeFileReplacing(const std::string &path, const std::string &text)
     std::remove(tmp.c_str());
     throw std::runtime_error("cannot write '" + path + "' (a full disk?)");
   }
-  std::rename(tmp.c_str(), path.c_str());
+  std::rename(tmp.c_str(), target.c_str());
 }
 
 } // namespace boomdyn::xdmf

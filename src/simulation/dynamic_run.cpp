@@ -9,6 +9,8 @@
 #include "boomdyn/slider_tracker.hpp"
 
 #include <algorithm>
+#include <string>
+#include <vector>
 
 namespace boomdyn {
 
@@ -40,20 +42,41 @@ PetscErrorCode Simulation::restore(RunState *state)
   PetscCheck(in.sceneText() == scene_.text, comm_, PETSC_ERR_USER_INPUT,
              "restart file %s was written for another scene text than %s", options_.restartPath.c_str(),
              scene_.file.c_str());
-  // The options that define the run must be those of the run that wrote
-  // the checkpoint (older checkpoints do not hold them).
+  // The options that change the equations or the sequence of steps must be
+  // those of the run that wrote the checkpoint (docs/reliability.md lists
+  // them; older checkpoints do not hold the later ones). Options that only
+  // change how the same equations are solved (Newton's start, Jacobian
+  // reuse, linear solvers, partition, ranks) may differ.
   const char *file = options_.restartPath.c_str();
-  const struct {
-    const char *key, *option;
+  static const char *const axialNames[] = {"full", "reduced", "assumed"};
+  struct Defining {
+    std::string key, option;
     double value;
-  } defining[] = {{"option_dt", "-ts_dt (dynamic.dt)", scene_.dynamic.dt},
-                  {"option_rho_inf", "-boom_rho_inf (dynamic.rho_inf)", scene_.dynamic.rho_inf},
-                  {"option_adaptive_tol", "-boom_adaptive_tol", options_.adaptiveTolerance},
-                  {"option_kink_restart", "-boom_kink_restart", options_.kinkRestart ? 1.0 : 0.0}};
-  for (const auto &d : defining)
-    PetscCheck(!in.hasScalar(d.key) || in.scalar(d.key) == d.value, comm_, PETSC_ERR_USER_INPUT,
-               "restart file %s was written with %s = %s, this run has %s: restart with the options of that run", file,
-               d.option, numberText(in.scalar(d.key)).c_str(), numberText(d.value).c_str());
+    const char *const *names; // the option's words by value, or null for a number
+  };
+  std::vector<Defining> defining = {
+      {"option_dt", "-ts_dt (dynamic.dt)", scene_.dynamic.dt, nullptr},
+      {"option_rho_inf", "-boom_rho_inf (dynamic.rho_inf)", scene_.dynamic.rho_inf, nullptr},
+      {"option_adaptive_tol", "-boom_adaptive_tol", options_.adaptiveTolerance, nullptr},
+      {"option_kink_restart", "-boom_kink_restart", options_.kinkRestart ? 1.0 : 0.0, nullptr},
+      {"option_filtered_start", "-boom_filtered_start", options_.filteredStart ? 1.0 : 0.0, nullptr}};
+  for (const BodySpec &b : scene_.bodies)
+    if (b.type == BodySpec::Type::AncfBeam) {
+      defining.push_back({"option_elements_" + b.name, "-boom_elements (elements of beam '" + b.name + "')",
+                          static_cast<double>(b.elements), nullptr});
+      defining.push_back({"option_axial_integration_" + b.name, "-boom_axial_integration (beam '" + b.name + "')",
+                          static_cast<double>(b.section.axialIntegration), axialNames});
+    }
+  for (const auto &d : defining) {
+    if (!in.hasScalar(d.key) || in.scalar(d.key) == d.value) continue;
+    const double saved = in.scalar(d.key);
+    const bool named = d.names && (saved == 0 || saved == 1 || saved == 2);
+    const std::string was = named ? d.names[static_cast<int>(saved)] : numberText(saved);
+    const std::string now = d.names ? d.names[static_cast<int>(d.value)] : numberText(d.value);
+    SETERRQ(comm_, PETSC_ERR_USER_INPUT,
+            "restart file %s was written with %s = %s, this run has %s: restart with the options of that run", file,
+            d.option.c_str(), was.c_str(), now.c_str());
+  }
   PetscCall(integrator_->restore(in));
   PetscCall(restoreStepper(in, &stepper_));
   PetscCall(dynamicState(state));

@@ -139,6 +139,12 @@ PetscErrorCode Simulation::writeCheckpoint(const std::string &path) const
   w.addScalar("option_rho_inf", scene_.dynamic.rho_inf);
   w.addScalar("option_adaptive_tol", options_.adaptiveTolerance);
   w.addScalar("option_kink_restart", options_.kinkRestart ? 1.0 : 0.0);
+  w.addScalar("option_filtered_start", options_.filteredStart ? 1.0 : 0.0);
+  for (const BodySpec &b : scene_.bodies) // the mesh and the element formulation of every beam
+    if (b.type == BodySpec::Type::AncfBeam) {
+      w.addScalar("option_elements_" + b.name, b.elements);
+      w.addScalar("option_axial_integration_" + b.name, static_cast<double>(b.section.axialIntegration));
+    }
   for (const auto &m : monitors_) PetscCall(m->save(w));
   PetscCall(w.write(path, scene_.text));
   PetscFunctionReturn(0);

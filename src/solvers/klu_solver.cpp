@@ -131,6 +131,11 @@ PetscErrorCode matMatSolve(Mat F, Mat B, Mat X)
   PetscFunctionReturn(0);
 }
 
+// KLU running out of memory is no breakdown of the factorization: it is
+// PETSC_ERR_MEM (an out-of-memory message), everything else PETSC_ERR_LIB
+// (which NewtonSolver::factor reports as a singular matrix).
+PetscErrorCode kluErrorCode(int status) { return status == KLU_OUT_OF_MEMORY ? PETSC_ERR_MEM : PETSC_ERR_LIB; }
+
 // Full factorization with partial pivoting; records the pivot growth that
 // later refactorizations are measured against.
 PetscErrorCode factorFully(Mat F, const Rows &rows)
@@ -142,9 +147,12 @@ PetscErrorCode factorFully(Mat F, const Rows &rows)
   ++lu->counts.full;
   // A library error, as from PETSc's interface: the callers turn it into a
   // message about the model (NewtonSolver::factor).
-  PetscCheck(lu->numeric, PETSC_COMM_SELF, PETSC_ERR_LIB,
+  PetscCheck(lu->numeric, PETSC_COMM_SELF, kluErrorCode(lu->common.status),
              "boomklu: KLU factorization failed (status %d%s, column %d)", lu->common.status,
-             lu->common.status == KLU_SINGULAR ? ": singular" : "", lu->common.singular_col);
+             lu->common.status == KLU_SINGULAR        ? ": singular"
+             : lu->common.status == KLU_OUT_OF_MEMORY ? ": cannot allocate the memory it needs"
+                                                      : "",
+             lu->common.singular_col);
   PetscCheck(klu_rgrowth(rows.p(), rows.i(), rows.x(), lu->symbolic, lu->numeric, &lu->common), PETSC_COMM_SELF,
              PETSC_ERR_LIB, "boomklu: KLU pivot growth failed (status %d)", lu->common.status);
   lu->fullGrowth = lu->common.rgrowth;
@@ -233,8 +241,8 @@ PetscErrorCode factorSymbolic(Mat F, Mat A, IS, IS, const MatFactorInfo *)
   lu->symbolic = klu_analyze(rows.n, rows.p(), rows.i(), &lu->common);
   lu->common.user_data = nullptr; // the container may go before the factor
   PetscCall(rows.giveBack());
-  PetscCheck(lu->symbolic, PETSC_COMM_SELF, PETSC_ERR_LIB, "boomklu: KLU analysis failed (status %d)",
-             lu->common.status);
+  PetscCheck(lu->symbolic, PETSC_COMM_SELF, kluErrorCode(lu->common.status), "boomklu: KLU analysis failed (status %d%s)",
+             lu->common.status, lu->common.status == KLU_OUT_OF_MEMORY ? ": cannot allocate the memory it needs" : "");
   F->ops->lufactornumeric = factorNumeric;
   PetscFunctionReturn(0);
 }

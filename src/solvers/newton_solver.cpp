@@ -8,6 +8,7 @@
 
 #include <cmath>
 #include <limits>
+#include <string>
 
 namespace boomdyn {
 
@@ -401,6 +402,29 @@ PetscErrorCode NewtonSolver::formJacobian(SNES snes, Vec x, Mat J, Mat, void *se
 // error without raising one; SNES then ends with DIVERGED_LINEAR_SOLVE and
 // the step is cut, as before. The solve that follows reuses this
 // factorization (the matrix state is unchanged).
+namespace {
+
+// The first error inside a factorization, kept instead of printed.
+struct FactorFailure {
+  PetscErrorCode code = 0;
+  std::string message, function;
+  bool outOfMemory() const
+  {
+    return code == PETSC_ERR_MEM || function == "PetscMallocAlign" || message.find("allocate") != std::string::npos;
+  }
+};
+
+PetscErrorCode keepFactorFailure(MPI_Comm, int, const char *function, const char *, PetscErrorCode n,
+                                 PetscErrorType type, const char *message, void *context)
+{
+  auto *failure = static_cast<FactorFailure *>(context);
+  if (type == PETSC_ERROR_INITIAL && failure->code == 0)
+    failure->code = n, failure->message = message ? message : "", failure->function = function ? function : "";
+  return n;
+}
+
+} // namespace
+
 PetscErrorCode NewtonSolver::factor(SNES snes, Mat J)
 {
   KSP ksp;
@@ -409,9 +433,15 @@ PetscErrorCode NewtonSolver::factor(SNES snes, Mat J)
   PetscCall(SNESGetKSP(snes, &ksp));
   PetscCall(KSPSetOperators(ksp, J, J));
   PetscCall(KSPGetPC(ksp, &pc));
-  PetscCall(PetscPushErrorHandler(PetscReturnErrorHandler, nullptr));
+  FactorFailure failure;
+  PetscCall(PetscPushErrorHandler(keepFactorFailure, &failure));
   const PetscErrorCode ierr = PCSetUp(pc);
   PetscCall(PetscPopErrorHandler());
+  // Memory that ran out inside the factorization (MUMPS: "Cannot allocate
+  // required memory N megabytes", raised as PETSC_ERR_LIB like a breakdown;
+  // PETSc's own allocator) is no singular matrix.
+  PetscCheck(ierr == 0 || !failure.outOfMemory(), PetscObjectComm((PetscObject)snes), PETSC_ERR_MEM,
+             "the direct solver ran out of memory factorizing the system matrix (%s)", failure.message.c_str());
   PetscCheck(ierr != PETSC_ERR_LIB, PetscObjectComm((PetscObject)snes), PETSC_ERR_MAT_LU_ZRPVT,
              "the system matrix is singular: a body or motion without support, or redundant or contradictory "
              "constraints (two drives on one joint, a clamp plus an angle drive at one point, ...); the direct "

@@ -62,6 +62,17 @@ def status(h5):
         return None, str(e), 0
 
 
+def summary_status(h5):
+    """/summary/status alone (a file may have no /steps), or why there is none."""
+    try:
+        import h5py
+        with h5py.File(h5, "r") as f:
+            s = f["summary"].attrs.get("status") if "summary" in f else None
+            return (s.decode() if isinstance(s, bytes) else s) or "no /summary/status"
+    except Exception as e:  # noqa: BLE001 (an unreadable file is the finding)
+        return "unreadable: %s" % e
+
+
 def quick(*extra):
     return ["-o", path("r.h5"), "-boom_overwrite", "-boom_quiet", *extra]
 
@@ -229,6 +240,85 @@ def case_output_is_checkpoint_or_restart():
     check(open(path("c.chk.h5"), "rb").read() == before, "the checkpoint is unchanged")
 
 
+def file_kind(p):
+    """What is at p, without following a last symbolic link: 'chr', 'fifo', 'sock', 'dir', 'link', 'file', 'none'."""
+    import stat
+    try:
+        m = os.lstat(p).st_mode
+    except FileNotFoundError:
+        return "none"
+    for kind, test in [("link", stat.S_ISLNK), ("chr", stat.S_ISCHR), ("fifo", stat.S_ISFIFO), ("sock", stat.S_ISSOCK),
+                       ("dir", stat.S_ISDIR), ("file", stat.S_ISREG)]:
+        if test(m):
+            return kind
+    return "other"
+
+
+def special_files():
+    """A FIFO, a socket, a folder, a link to /dev/null and (as root) a character
+    device made here with /dev/null's numbers: never /dev/null itself."""
+    import socket
+    made = {}
+    os.mkfifo(path("fifo.h5"))
+    made["fifo.h5"] = "a FIFO"
+    sock = socket.socket(socket.AF_UNIX, socket.SOCK_STREAM)
+    sock.bind(path("sock.h5"))  # the socket file stays after close
+    sock.close()
+    made["sock.h5"] = "a socket"
+    os.mkdir(path("dir.h5"))
+    made["dir.h5"] = "is a folder"
+    os.symlink("/dev/null", path("devnull_link.h5"))
+    made["devnull_link.h5"] = "a character device"
+    if os.geteuid() == 0:
+        try:
+            os.mknod(path("chr.h5"), 0o666 | __import__("stat").S_IFCHR, os.makedev(1, 3))
+            made["chr.h5"] = "a character device"
+        except OSError as e:
+            print("no character device made here (%s); the link to /dev/null stands for it" % e)
+    return made
+
+
+def case_special_file_outputs():
+    """Outputs, checkpoints and restart files that are not regular files are
+    refused before anything is written; none of them is replaced."""
+    made = special_files()
+    devnull = os.stat("/dev/null")
+    kinds = {name: file_kind(path(name)) for name in made}
+    for name, said in made.items():
+        for option, extra in [("-o", ["-boom_checkpoint", path("c.chk.h5")]),
+                              ("-boom_checkpoint", ["-o", path("r.h5"), "-boom_checkpoint_interval", "0.005"])]:
+            rc, out = run([option, path(name), "-boom_overwrite", "-boom_quiet", "-ts_max_time", "0.01", *extra])
+            check(rc == 1 and option + " " + path(name) in last_line(out) and said in last_line(out),
+                  "%s %s (%s) is refused naming it: %s" % (option, name, said, last_line(out)[:160]))
+        rc, out = run(["-o", path("r.h5"), "-boom_overwrite", "-boom_quiet", "-boom_restart", path(name),
+                       "-ts_max_time", "0.01"], timeout=20)
+        expected = "is a folder" if name == "dir.h5" else said
+        check(rc == 1 and "-boom_restart" in last_line(out) and expected.replace("is a folder", "a folder") in last_line(out),
+              "-boom_restart %s is refused, no hang (exit %s): %s" % (name, rc, last_line(out)[:160]))
+    # The XDMF file next to the results is replaced by rename at every snapshot.
+    os.mkfifo(path("x.xmf"))
+    rc, out = run(["-o", path("x.h5"), "-boom_overwrite", "-boom_quiet", "-ts_max_time", "0.01"], timeout=20)
+    check(rc == 1 and "XDMF file" in last_line(out) and "a FIFO" in last_line(out),
+          "an XDMF path that is a FIFO is refused (exit %s): %s" % (rc, last_line(out)[:160]))
+    after = {name: file_kind(path(name)) for name in made}
+    check(after == kinds, "every special file is still what it was: %s" % after)
+    check(file_kind(path("x.xmf")) == "fifo", "the FIFO at the XDMF path too")
+    now = os.stat("/dev/null")
+    check(file_kind("/dev/null") == "chr" and (now.st_ino, now.st_rdev) == (devnull.st_ino, devnull.st_rdev),
+          "/dev/null is untouched")
+    left = sorted(n for n in os.listdir(scratch) if ".tmp" in n or n in ("r.h5", "x.h5"))
+    check(left == [], "nothing was created for the refused runs: %s" % left)
+    # A symbolic link to a regular file is written through: the link stays.
+    target = path("target.h5")
+    open(target, "w").close()
+    os.symlink(target, path("link.h5"))
+    rc, out = run(["-o", path("link.h5"), "-boom_overwrite", "-boom_quiet", "-ts_max_time", "0.01", "-boom_checkpoint",
+                   path("c.chk.h5")])
+    s, rows, _ = status(target)
+    check(rc == 0 and file_kind(path("link.h5")) == "link" and s == "completed",
+          "-o LINK to a regular file writes the file, the link stays (exit %s, %s, %s rows)" % (rc, s, rows))
+
+
 def concurrent(extra_env):
     e = dict(env, **extra_env)
     shared = path("shared.h5")
@@ -339,6 +429,30 @@ def full_disk_checkpoint(shim_only):
     with_small_fs("3m", body, shim_only)
 
 
+def case_full_disk_status_shim():
+    """A file system that is (nearly) full when the run starts: a results file
+    is only started with 256 kB free, and one that was started always ends with
+    /summary/status = failed: ... (with 260 kB free the file was left without
+    /summary: its first flush failed and it was closed as it was)."""
+    def body(folder):
+        for left_kb in [8, 200, 260, 300, 400]:
+            for name in os.listdir(folder):
+                os.remove(os.path.join(folder, name))
+            with open(os.path.join(folder, "filler"), "wb") as f:
+                f.write(b"\0" * (3 * 1024 * 1024 - left_kb * 1024))
+            out = os.path.join(folder, "r.h5")
+            rc, text = run(["-o", out, "-boom_quiet", "-ts_max_time", "1", "-boom_checkpoint", path("c.chk.h5")],
+                           timeout=60)
+            check(rc == 1 and "file system is full" in last_line(text),
+                  "%d kB free: exit 1 saying the file system is full (exit %s): %s" % (left_kb, rc, last_line(text)[:150]))
+            s = summary_status(out) if os.path.exists(out) else "no file"
+            check(s == "no file" or s.startswith("failed"),
+                  "%d kB free: no results file, or one that says it failed (%s)" % (left_kb, s))
+            left = [n for n in os.listdir(folder) if ".tmp" in n]
+            check(left == [], "no temporary file left: %s" % left)
+    with_small_fs("3m", body, True)
+
+
 def case_full_disk_results():
     full_disk_results(False)
 
@@ -394,6 +508,34 @@ def edit_checkpoint(chk, edit):
     return damaged
 
 
+def fnv1a(data, h=14695981039346656037):
+    for byte in data:
+        h = ((h ^ byte) * 1099511628211) & 0xFFFFFFFFFFFFFFFF
+    return h
+
+
+def rewrite_checksum(f):
+    """The checksum of src/io/checkpoint.cpp (contentChecksum), recomputed after
+    an edit: FNV-1a 64 over the scene text, then the scalars, arrays and vectors
+    by sorted name, each name and sequence preceded by its length (8 bytes)."""
+    import numpy as np
+    text = lambda b: len(b).to_bytes(8, "little") + b  # noqa: E731
+    nums = lambda v: len(v).to_bytes(8, "little") + np.asarray(v, dtype="<f8").tobytes()  # noqa: E731
+    names = lambda d: [n.decode() if isinstance(n, bytes) else n for n in f[d][:]]  # noqa: E731
+    scene_text = f["scene_text"][()]
+    data = text(scene_text if isinstance(scene_text, bytes) else scene_text.encode())
+    scalars = dict(zip(names("scalar_names"), f["scalar_values"][:]))
+    for n in sorted(k for k in scalars if k != "none"):
+        data += text(n.encode()) + nums([scalars[n]])
+    for n in sorted(k for k in names("array_names") if k != "none"):
+        v = f["arrays/" + n][:]
+        data += text(n.encode()) + nums(v[1:1 + int(v[0])])
+    for n in sorted(k for k in names("vector_names") if k != "none"):
+        data += text(n.encode()) + nums(f["vectors/" + n][:])
+    del f["checksum"]
+    f["checksum"] = "%016x" % fnv1a(data)
+
+
 def restart(chk, *extra):
     return run(["-o", path("restarted.h5"), "-boom_overwrite", "-boom_quiet", "-boom_restart", chk, "-boom_checkpoint",
                 path("next.chk.h5"), "-ts_max_time", "0.06", *extra])
@@ -410,13 +552,83 @@ def case_restart_nan_time():
 
 
 def case_restart_violated_state():
+    """An edit that also rewrites the checksum (a forgery) still meets the constraint check."""
     def move_clamped_node(f):
         q = f["vectors/q"][:]
         q[0] += 0.05
         f["vectors/q"][:] = q
+        rewrite_checksum(f)
     rc, out = restart(edit_checkpoint(checkpoint(), move_clamped_node))
     check(rc == 1 and "violates the constraints by 0.05" in last_line(out),
           "a state 5 cm off its clamp is refused: " + last_line(out)[:140])
+
+
+def case_restart_edited_state():
+    """A free coordinate moved by 5 cm satisfies every constraint: only the
+    checksum of the saved contents finds it."""
+    chk = checkpoint()
+    import h5py
+    with h5py.File(chk, "r") as f:
+        q = f["vectors/q"][:]
+    tip_x = len(q) - 4  # the tip node's x of the cantilever (4 coordinates per node, clamped at the start)
+
+    def move_free_coordinate(f):
+        q = f["vectors/q"][:]
+        q[tip_x] += 0.05
+        f["vectors/q"][:] = q
+    rc, out = restart(edit_checkpoint(chk, move_free_coordinate))
+    check(rc == 1 and "do not match the checksum" in last_line(out) and "damaged.chk.h5" in last_line(out),
+          "the tip moved by 5 cm is refused, naming the file: " + last_line(out)[:160])
+
+    def rewrite_only(f):  # the checksum as Python computes it matches the program's: the test's edit is the cause
+        old = f["checksum"][()]
+        rewrite_checksum(f)
+        check(f["checksum"][()] == old, "the checksum recomputed here equals the stored one (%s)" % old)
+    rc, out = restart(edit_checkpoint(chk, rewrite_only))
+    check(rc == 0, "an unedited checkpoint restarts (exit %s): %s" % (rc, last_line(out)[:120]))
+
+    def change_scalar(f):
+        names = [n.decode() if isinstance(n, bytes) else n for n in f["scalar_names"][:]]
+        v = f["scalar_values"][:]
+        v[names.index("t")] += 1e-3
+        f["scalar_values"][:] = v
+    rc, out = restart(edit_checkpoint(chk, change_scalar))
+    check(rc == 1 and "do not match the checksum" in last_line(out), "a time moved by 1 ms is refused: "
+          + last_line(out)[:140])
+    rc, out = restart(edit_checkpoint(chk, lambda f: f.__delitem__("checksum")))
+    check(rc == 1 and "holds no checksum" in last_line(out), "a checkpoint without a checksum is refused: "
+          + last_line(out)[:140])
+
+
+def case_restart_formulation_mismatch():
+    """Every option that changes the equations or the step sequence is held by
+    the checkpoint; options that only change how they are solved may differ."""
+    chk = checkpoint()
+    for option, value, named in [("-boom_axial_integration", "full", "-boom_axial_integration (beam 'boom') = assumed, "
+                                  "this run has full"),
+                                 ("-boom_axial_integration", "reduced", "this run has reduced"),
+                                 ("-boom_filtered_start", "0", "-boom_filtered_start = 1, this run has 0"),
+                                 ("-boom_kink_restart", "0", "-boom_kink_restart = 1, this run has 0"),
+                                 ("-boom_elements", "17", "-boom_elements (elements of beam 'boom') = 16, this run has 17")]:
+        rc, out = restart(chk, option, value)
+        check(rc == 1 and named in last_line(out) and "restart with the options" in last_line(out),
+              "%s %s is refused naming it: %s" % (option, value, last_line(out)[:160]))
+    for option, value in [("-boom_acceleration_predictor", "0"), ("-boom_jacobian_reuse", "0"),
+                          ("-boom_energy_tolerance", "0.1")]:
+        rc, out = restart(chk, option, value)
+        check(rc == 0, "%s %s (the same equations, solved otherwise) restarts (exit %s): %s"
+              % (option, value, rc, last_line(out)[:120]))
+    # Two beams with their element counts swapped: the same number of unknowns, another mesh.
+    two = os.path.join(source, "inputs", "two_beams_pinned.yaml")
+    chk2 = path("two.chk.h5")
+    rc, out = run(quick("-ts_max_time", "0.02", "-boom_checkpoint_interval", "0.01", "-boom_checkpoint", chk2),
+                  scene_file=two)
+    check(rc == 0 and os.path.exists(chk2), "a checkpoint of two_beams_pinned (exit %s)" % rc)
+    rc, out = run(["-o", path("restarted.h5"), "-boom_overwrite", "-boom_quiet", "-boom_restart", chk2,
+                   "-boom_checkpoint", path("next.chk.h5"), "-ts_max_time", "0.03", "-boom_elements_inner", "6",
+                   "-boom_elements_outer", "8"], scene_file=two)
+    check(rc == 1 and "beam 'inner') = 8, this run has 6" in last_line(out),
+          "8 + 6 elements swapped to 6 + 8 are refused: " + last_line(out)[:160])
 
 
 def case_restart_options_mismatch():
@@ -432,6 +644,32 @@ def case_restart_options_mismatch():
                    "-ts_max_time", "0.02"])
     check(rc == 1 and "not before the end time" in last_line(out),
           "an end time before the checkpoint's is refused: " + last_line(out)[:140])
+
+
+# ---------------------------------------------------------- out of memory
+def case_out_of_memory():
+    """A mesh that passes the estimate against the machine's memory but not the
+    address-space limit (ulimit -v): the allocation fails at different places
+    for different limits (here: the Jacobian pattern's std::bad_alloc, which
+    ended in std::terminate, exit 134; PETSc's allocator, a PETSc-internal
+    message; KLU's analysis, reported as a singular matrix). Every one is one
+    line saying out of memory."""
+    # 3e5 elements: 1.2 GB by the estimate, so a machine with 2 GB or more lets it start.
+    for elements, limit_mb in [(300000, 800), (100000, 600), (100000, 700)]:
+        out_file = path("oom.h5")
+        cmd = "ulimit -v %d && exec %s %s -o %s -boom_overwrite -boom_quiet -boom_elements %d -ts_max_time 0.002" % (
+            limit_mb * 1000, boomdyn, scene, out_file, elements)
+        try:
+            r = subprocess.run(["/bin/bash", "-c", cmd], capture_output=True, text=True, timeout=120, env=env)
+            rc, text = r.returncode, r.stdout + r.stderr
+        except subprocess.TimeoutExpired:
+            rc, text = "hang", ""
+        line = last_line(text)
+        check(rc == 1, "%d elements under ulimit -v %d MB: exit 1, no abort (got %s)" % (elements, limit_mb, rc))
+        check(line.startswith("boomdyn: error:") and "out of memory" in line and "ulimit -v" in line
+              and "singular" not in line, "with one line saying so: " + line[:220])
+        s, rows, _ = status(out_file)
+        check(s != "completed", "no completed results (%s)" % s)
 
 
 # --------------------------------------------------------------- messages

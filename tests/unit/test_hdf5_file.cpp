@@ -2,10 +2,12 @@
 // the plain HDF5 C API (not with Hdf5File itself, so a symmetric bug in
 // writing and reading cannot hide).
 #include "boomdyn/hdf5_file.hpp"
+#include "boomdyn/output_file.hpp"
 
 #include <gtest/gtest.h>
 #include <hdf5.h>
 #include <mpi.h>
+#include <sys/stat.h>
 
 #include <cmath>
 #include <filesystem>
@@ -17,6 +19,8 @@
 
 namespace fs = std::filesystem;
 using boomdyn::Hdf5File;
+using boomdyn::placementPath;
+using boomdyn::specialFileKind;
 
 namespace {
 
@@ -387,6 +391,42 @@ TEST_F(Hdf5FileTest, ExistingFileIsKeptUnlessOverwriteIsAsked)
   }
   Id file(openReadOnly(path), H5Fclose);
   EXPECT_EQ(readScalarAttribute<long long>(file, "/", "run", H5T_NATIVE_LLONG), 2);
+}
+
+// A FIFO or a folder at the path is never replaced, with or without
+// overwrite (a rename onto /dev/null replaced the device); a symbolic link
+// to a regular file is written through and stays a link.
+TEST_F(Hdf5FileTest, SpecialFilesAreRefusedAndLinksWrittenThrough)
+{
+  const std::string fifo = outputPath("fifo"), folder = outputPath("folder");
+  fs::remove_all(folder);
+  ASSERT_EQ(mkfifo(fifo.c_str(), 0600), 0);
+  fs::create_directory(folder);
+  EXPECT_EQ(specialFileKind(fifo), "a FIFO (named pipe)");
+  EXPECT_EQ(specialFileKind(folder), "a folder");
+  EXPECT_EQ(specialFileKind(fifo + ".absent"), "");
+  for (const std::string &path : {fifo, folder}) {
+    const std::string message = messageOf([&] { Hdf5File out(path, true); });
+    EXPECT_NE(message.find(path), std::string::npos) << message;
+    EXPECT_NE(message.find("not a regular file"), std::string::npos) << message;
+  }
+  EXPECT_TRUE(fs::is_fifo(fifo));
+  EXPECT_TRUE(fs::is_directory(folder));
+  fs::remove(fifo);
+  fs::remove(folder);
+
+  const std::string target = outputPath("link_target"), link = outputPath("link");
+  { Hdf5File first(target, false); }
+  fs::create_symlink(target, link);
+  EXPECT_EQ(placementPath(link), fs::canonical(target).string());
+  EXPECT_EQ(placementPath(target), target);
+  {
+    Hdf5File through(link, true);
+    through.setAttribute("/", "run", 3LL);
+  }
+  EXPECT_TRUE(fs::is_symlink(link));
+  Id file(openReadOnly(target), H5Fclose);
+  EXPECT_EQ(readScalarAttribute<long long>(file, "/", "run", H5T_NATIVE_LLONG), 3);
 }
 
 TEST_F(Hdf5FileTest, UnwritableLocationNamesThePath)
