@@ -9,7 +9,7 @@ packages=(
   petsc-dev slepc-dev libhdf5-openmpi-dev libeigen3-dev libyaml-cpp-dev libmetis-dev
   libsuitesparse-dev  # KLU, called directly by the one-rank solver (PETSc depends on it too)
   openmpi-bin cmake make g++ pkg-config git libgtest-dev
-  python3 python3-numpy python3-h5py python3-matplotlib
+  python3 python3-numpy python3-h5py python3-matplotlib python3-yaml  # yaml: scene text in postprocess/
 )
 # With --tests, what the test suite needs beside (scripts/test.sh).
 if [ "${1:-}" = "--tests" ]; then
