@@ -111,6 +111,7 @@ def signal_static(sig, name):
     p = subprocess.Popen([boomdyn, static_scene, "-o", out, "-boom_overwrite", "-boom_quiet", "-boom_load_steps",
                           "1000000"], stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, env=env)
     time.sleep(2.0)
+    wait_for_handler([p.pid], sig)
     p.send_signal(sig)
     try:
         text, _ = p.communicate(timeout=20)
@@ -168,6 +169,27 @@ def interrupted_like_sigterm(p, sig, name, ranks, text=None):
     check(os.path.exists(path("r.chk.h5")), "a checkpoint was written")
 
 
+def catches(pid, sig):
+    """Whether process pid has installed a handler for sig (/proc/PID/status, SigCgt)."""
+    try:
+        with open("/proc/%d/status" % pid) as f:
+            for line in f:
+                if line.startswith("SigCgt:"):
+                    return (int(line.split()[1], 16) >> (sig - 1)) & 1 == 1
+    except OSError:
+        pass
+    return False
+
+
+def wait_for_handler(pids, sig, limit=30.0):
+    """On a loaded machine a process can still be starting (MPI, PETSc) after the
+    fixed wait; a signal before boomdyn installs its handler kills it outright,
+    which is not what these cases test. Wait until every rank catches sig."""
+    end = time.time() + limit
+    while time.time() < end and not all(catches(pid, sig) for pid in pids):
+        time.sleep(0.1)
+
+
 def signal_run(sig, name, ranks):
     if ranks > 1 and not mpiexec:
         print("skipped: no mpiexec given")
@@ -175,6 +197,7 @@ def signal_run(sig, name, ranks):
     p = long_run(["-boom_quiet"], ranks)
     time.sleep(3.0)
     pids = rank_pids(p, ranks)
+    wait_for_handler(pids, sig)
     check(len(pids) == ranks, "found the %d boomdyn process(es): %s" % (ranks, pids))
     if pids:
         os.kill(pids[0], sig)  # one rank only: the others learn it through the run's reduction
