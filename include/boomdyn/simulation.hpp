@@ -57,7 +57,7 @@ public:
   PetscErrorCode setUp();
   void addMonitor(std::unique_ptr<Monitor> monitor) { monitors_.push_back(std::move(monitor)); }
   // Collective: the whole analysis. stop, if given, is asked after every
-  // time step, load increment and before an eigen-analysis, and must answer
+  // time step, load increment and iteration of an eigen-solve, and must answer
   // alike on every rank (SIGINT/SIGTERM/SIGHUP/SIGPIPE). A run
   // that fails or is stopped returns 0 and says so in outcome().
   PetscErrorCode run(const std::function<bool()> &stop = {});
@@ -87,7 +87,9 @@ private:
   PetscErrorCode dynamicState(RunState *state);
   PetscErrorCode afterStep(const RunState &state, std::string *failure);
   PetscErrorCode finish(const RunState &state);
-  PetscErrorCode modalAnalysis(double t, Vec q, Vec lambda);
+  // The scene's modes at (t, q, lambda); stop is asked during the eigen-solves
+  // (*interrupted: they were stopped, no modes reported).
+  PetscErrorCode modalAnalysis(double t, Vec q, Vec lambda, const std::function<bool()> &stop, bool *interrupted);
   std::string failureDetails(const std::string &failure);
 
   const Scene &scene_;
