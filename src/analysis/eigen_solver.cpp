@@ -106,19 +106,24 @@ PetscErrorCode stopOnRequest(EPS eps, PetscInt its, PetscInt maxIts, PetscInt nc
 // by about that much; above kFloorRefused the analysis stops.
 constexpr double kFloorWarned = 1e-5, kFloorRefused = 1e-2;
 
-// The finest beam mesh of the model, for the messages about the floor.
+// The finest beam mesh of the model, for the messages about the floor: the
+// beam whose element bending frequency sqrt(EI / rhoA) / l^2 is highest
+// (the stiffest element modes set the floor).
 std::string finestMesh(const Model &model)
 {
-  const std::vector<Model::Conditioning> bodies = model.iterationConditioning();
-  const Model::Conditioning *finest = nullptr;
-  for (const Model::Conditioning &b : bodies)
-    if (!finest || b.omegaMax > finest->omegaMax) finest = &b;
+  const BodySpec *finest = nullptr;
+  double highest = 0;
+  for (const BodySpec &b : model.scene().bodies) {
+    if (b.type != BodySpec::Type::AncfBeam || !(b.section.rhoA > 0) || b.elements < 1) continue;
+    const double l = b.length / b.elements, w = std::sqrt(b.section.EI / b.section.rhoA) / (l * l);
+    if (!finest || w > highest) finest = &b, highest = w;
+  }
   if (!finest) return "the pencil is ill-conditioned";
   char text[256];
   std::snprintf(text, sizeof text,
-                "the mesh is too fine for double precision: body '%s' has %d elements of %.3g m (largest element "
-                "frequency %.3g rad/s; the floor grows about like the 3.5th power of the element count)",
-                finest->body.c_str(), finest->elements, finest->elementLength, finest->omegaMax);
+                "the mesh is too fine for double precision: body '%s' has %d elements of %.3g m (the floor grows about "
+                "like the 3.5th power of the element count)",
+                finest->name.c_str(), finest->elements, finest->length / finest->elements);
   return text;
 }
 
@@ -357,7 +362,7 @@ PetscErrorCode solveModes(Assembler &assembler, double t, Vec q, Vec lambda, int
     PetscCheck(converged || !atFloor || !(err < 1.0), assembler.comm(), PETSC_ERR_NOT_CONVERGED,
                "eigen-analysis: eigenpair %" PetscInt_FMT " (omega^2 = %.4g rad^2/s^2) is not determined in double "
                "precision: its relative residual %.3g is the round-off floor of the pencil (backward error %.1e), and "
-               "the frequency can be off by several times that. %s; use fewer elements (docs/model.md §5)",
+               "the frequency can be off by several times that: %s; use fewer elements (docs/model.md §5)",
                (PetscInt)(k + 1), (double)w, (double)err, (double)backward,
                finestMesh(assembler.model()).c_str());
     // A model error found by the analysis: reported like the user errors (one line, no location).
