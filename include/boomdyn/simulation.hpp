@@ -71,6 +71,9 @@ public:
   SensorProbe &sensors() { return sensors_; }
   MPI_Comm comm() const { return comm_; }
   const SimulationOptions &options() const { return options_; }
+  // The stop request of the run() in progress (empty outside run()), for
+  // monitors whose work can be long (the tracking's eigen-solves).
+  const std::function<bool()> &stopRequest() const { return stop_; }
   // The initial state (layout of x); a vector of that layout.
   Vec initialState() const { return x_; }
   // Dynamic scenes: the integrator (after setUp); nullptr otherwise.
@@ -109,6 +112,7 @@ private:
   RunSummary summary_;
   RunOutcome outcome_;
   PetscLogDouble started_ = 0;
+  std::function<bool()> stop_; // run()'s stop
 };
 
 } // namespace boomdyn

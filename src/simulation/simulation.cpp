@@ -56,6 +56,7 @@ PetscErrorCode Simulation::run(const std::function<bool()> &stop)
   PetscCall(PetscTime(&started_));
   outcome_ = RunOutcome{};
   outcome_.dynamic = integrator_ != nullptr;
+  stop_ = stop;
   for (auto &m : monitors_) PetscCall(m->setUp());
   if (integrator_) PetscCall(runDynamic(stop));
   else PetscCall(runStatic(stop));
