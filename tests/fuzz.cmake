@@ -57,6 +57,7 @@ target_link_libraries(small_disk_shim PRIVATE ${CMAKE_DL_LIBS})
 # is a skip, with the reason in the output.
 set(fault_cases
   state_interval_tiny checkpoint_interval_tiny tracking_interval_tiny too_many_steps static_sigterm static_sigint
+  modal_sigint modal_sigterm tracking_sigterm
   sighup_1 sighup_2 sigpipe_1 sigpipe_2
   output_is_scene output_is_checkpoint_or_restart concurrent_overwrite concurrent_overwrite_unlocked
   full_disk_results full_disk_checkpoint full_disk_results_shim full_disk_checkpoint_shim full_disk_results_2

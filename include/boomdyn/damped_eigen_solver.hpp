@@ -10,17 +10,28 @@
 #pragma once
 
 #include "boomdyn/assembler.hpp"
+#include "boomdyn/eigen_solver.hpp"
 #include "boomdyn/petsc_handle.hpp"
 
+#include <array>
 #include <complex>
+#include <functional>
 #include <vector>
 
 namespace boomdyn {
 
 struct DampedModalResult {
-  std::vector<double> dampedOmega;  // omega_d = |Im lambda| (rad/s)
-  std::vector<double> omega;        // undamped-equivalent |lambda| (rad/s), ascending
-  std::vector<double> dampingRatio; // zeta = -Re lambda / |lambda|
+  std::vector<double> dampedOmega;  // omega_d = |Im lambda| (rad/s); 0 for an overdamped mode
+  std::vector<double> omega;        // undamped-equivalent |lambda| (rad/s), ascending; overdamped: sqrt(l1 l2)
+  std::vector<double> dampingRatio; // zeta = -Re lambda / |lambda|; overdamped: -(l1 + l2) / (2 sqrt(l1 l2)) > 1
+  // Decay rates -Re of the mode's two eigenvalues (1/s), slower first: equal
+  // for an oscillating pair, -l1 and -l2 for an overdamped mode (two real
+  // eigenvalues). A lone real eigenvalue of the PEP path: (-l, NaN).
+  std::vector<std::array<double, 2>> decayRates;
+  // The modes are the damped versions of the undamped modes given in
+  // DampedModalOptions::undamped (classical damping), entry k of mode k;
+  // false: the `count` eigenvalues of smallest |lambda| of the PEP solve.
+  bool classical = false;
   std::vector<double> residuals;    // relative residual norms of the pairs
   // Real parts of the coordinate parts of the eigenvectors, gathered on rank 0
   // (empty elsewhere), max-norm 1 (as ModalResult::shapes).
@@ -29,6 +40,8 @@ struct DampedModalResult {
   // eigenvectors x = real + i imag (layout of the pencil's x, all ranks),
   // of the eigenvalue with Im lambda > 0.
   std::vector<PetscHandle<Vec>> real, imag;
+  // The solve was stopped by DampedModalOptions::stop: nothing else is filled.
+  bool interrupted = false;
 };
 
 struct DampedModalOptions {
@@ -45,6 +58,15 @@ struct DampedModalOptions {
   // error 1.5e-8.
   bool allowFewer = false;
   bool keepVectors = false; // fill DampedModalResult::real, imag
+  std::function<bool()> stop; // as ModalOptions::stop (asked at every PEP iteration)
+  // The undamped modes of the same state with their vectors (solveModes with
+  // keepVectors), or null. Given, each is tried first as an eigenvector of
+  // the quadratic problem (classical damping: stiffness- or mass-proportional,
+  // Rayleigh): the roots of x^T (lambda^2 M + lambda D + K) x = 0, with the
+  // multipliers scaled by least squares, are accepted when the residual of
+  // the full problem is below 1e-8 for every mode; entry k is then the damped
+  // version of undamped mode k, oscillating or overdamped (docs/model.md §5).
+  const ModalResult *undamped = nullptr;
 };
 
 // D at (t, q, lambda) into a matrix made by assembler.createMatrix(): the

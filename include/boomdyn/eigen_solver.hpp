@@ -11,6 +11,7 @@
 #include "boomdyn/gather.hpp"
 #include "boomdyn/petsc_handle.hpp"
 
+#include <functional>
 #include <vector>
 
 namespace boomdyn {
@@ -25,10 +26,13 @@ struct ModalResult {
   // (for light damping entry k is the damped version of undamped mode k).
   std::vector<double> dampedFrequencyHz; // omega_d / 2 pi
   std::vector<double> undampedEquivalentHz; // |lambda| / 2 pi
-  std::vector<double> dampingRatio;      // -Re lambda / |lambda|
+  std::vector<double> dampingRatio;      // -Re lambda / |lambda|; > 1: overdamped
+  std::vector<double> decayRates;        // two per damped mode, 1/s, slower first (row-major, k x 2)
   // Eigenvectors in the layout of x with the multiplier part zeroed (only
   // when asked for; owned here).
   std::vector<PetscHandle<Vec>> vectors;
+  // The solve was stopped by ModalOptions::stop: nothing else is filled.
+  bool interrupted = false;
 };
 
 struct ModalOptions {
@@ -38,6 +42,11 @@ struct ModalOptions {
   double target = -1.0;
   Vec initialGuess = nullptr; // warm start (layout of x), e.g. the previous mode
   bool keepVectors = false;   // return the eigenvectors in ModalResult::vectors
+  // Asked at every iteration of the eigen-solver (SLEPc's stopping test), so
+  // that SIGINT/SIGTERM end a long solve within one iteration; collective,
+  // must answer alike on every rank. True: the solve ends at once and the
+  // result says interrupted (no modes).
+  std::function<bool()> stop;
 };
 
 // Linearize at coordinates q (layout of x, multiplier part ignored) with

@@ -49,6 +49,9 @@ struct TrackedModes {
   double trackedDampingRatio = 0;  // its damping ratio
   double dampedMac = 0;            // MAC of its shape (real part) against the followed shape
   bool dampedRefined = false;      // damped modes from refinement (false: SLEPc PEP solve)
+  // A full eigen-solve of this analysis was stopped by FrequencyTracker::stop:
+  // nothing else is filled, and the tracker's state is that of the last analysis.
+  bool interrupted = false;
 };
 
 class FrequencyTracker {
@@ -66,6 +69,9 @@ public:
   }
 
   PetscErrorCode analyze(double t, Vec q, Vec lambda, TrackedModes *out);
+  // Asked at every iteration of the full eigen-solves (ModalOptions::stop);
+  // true ends the analysis with TrackedModes::interrupted.
+  std::function<bool()> stop;
   // After analyze() at the same state: the damped modes (`count` lowest
   // oscillating, solveDampedModes with allowFewer) and, in out, for each
   // followed mode the one whose shape (real part) has the largest MAC against
@@ -91,7 +97,7 @@ public:
 private:
   // Full eigen-solve; basis_ = the vectors; the first `wanted` omega^2 returned.
   PetscErrorCode solveFully(double t, Vec q, Vec lambda, double target, Vec guess, int wanted,
-                            std::vector<double> *omega2);
+                            std::vector<double> *omega2, bool *interrupted);
   // The damped mode assigned to each followed mode (largest MAC against its
   // shape, greedy; -1: none) and the MACs (rank 0: it holds the shapes).
   static std::vector<int> dampedPicks(const TrackedModes &out, const DampedModalResult &dm,

@@ -57,7 +57,7 @@ public:
   PetscErrorCode setUp();
   void addMonitor(std::unique_ptr<Monitor> monitor) { monitors_.push_back(std::move(monitor)); }
   // Collective: the whole analysis. stop, if given, is asked after every
-  // time step, load increment and before an eigen-analysis, and must answer
+  // time step, load increment and iteration of an eigen-solve, and must answer
   // alike on every rank (SIGINT/SIGTERM/SIGHUP/SIGPIPE). A run
   // that fails or is stopped returns 0 and says so in outcome().
   PetscErrorCode run(const std::function<bool()> &stop = {});
@@ -71,6 +71,9 @@ public:
   SensorProbe &sensors() { return sensors_; }
   MPI_Comm comm() const { return comm_; }
   const SimulationOptions &options() const { return options_; }
+  // The stop request of the run() in progress (empty outside run()), for
+  // monitors whose work can be long (the tracking's eigen-solves).
+  const std::function<bool()> &stopRequest() const { return stop_; }
   // The initial state (layout of x); a vector of that layout.
   Vec initialState() const { return x_; }
   // Dynamic scenes: the integrator (after setUp); nullptr otherwise.
@@ -87,7 +90,9 @@ private:
   PetscErrorCode dynamicState(RunState *state);
   PetscErrorCode afterStep(const RunState &state, std::string *failure);
   PetscErrorCode finish(const RunState &state);
-  PetscErrorCode modalAnalysis(double t, Vec q, Vec lambda);
+  // The scene's modes at (t, q, lambda); stop is asked during the eigen-solves
+  // (*interrupted: they were stopped, no modes reported).
+  PetscErrorCode modalAnalysis(double t, Vec q, Vec lambda, const std::function<bool()> &stop, bool *interrupted);
   std::string failureDetails(const std::string &failure);
 
   const Scene &scene_;
@@ -107,6 +112,7 @@ private:
   RunSummary summary_;
   RunOutcome outcome_;
   PetscLogDouble started_ = 0;
+  std::function<bool()> stop_; // run()'s stop
 };
 
 } // namespace boomdyn

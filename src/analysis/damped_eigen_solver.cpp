@@ -12,6 +12,7 @@
 #include <cmath>
 #include <complex>
 #include <cstdio>
+#include <functional>
 
 namespace boomdyn {
 
@@ -69,8 +70,13 @@ struct Candidate {
 // |lambda| = 3.9e6 rad/s, omega_d = 4.7e3 rad/s, below modes of lower
 // |lambda|, and not reproducible between rank counts: a near-double real
 // eigenvalue split by round-off).
+// keepReal (modal analyses): a real eigenvalue is an overdamped motion, not
+// a failure, and is kept (Im set to 0); so is a near-real one, |Im| <= 1e-6
+// |lambda|: a double real eigenvalue (critical damping) is split by
+// round-off into a conjugate pair of Im ~ sqrt(eps) |lambda| (seen:
+// zeta = 0.999999 reported as oscillating).
 std::vector<Candidate> acceptModes(const std::vector<double> &re, const std::vector<double> &im, double target,
-                                   int *dropped)
+                                   bool keepReal, int *dropped)
 {
   double thetaMax = 0;
   for (std::size_t i = 0; i < re.size(); ++i)
@@ -82,6 +88,10 @@ std::vector<Candidate> acceptModes(const std::vector<double> &re, const std::vec
     const std::complex<double> l(re[i], im[i]);
     const bool finite = std::isfinite(re[i]) && std::isfinite(im[i]) &&
                         1.0 / std::abs(l - target) >= 1e-12 * thetaMax;
+    if (finite && keepReal && std::abs(im[i]) <= 1e-6 * std::abs(l)) {
+      modes.push_back({(PetscInt)i, re[i], 0.0});
+      continue;
+    }
     if (!finite || !(std::abs(im[i]) > 1e-10 * std::abs(l))) {
       ++*dropped;
       continue;
@@ -129,6 +139,130 @@ PetscErrorCode quadraticRayleighQuotient(Mat ops[3], Vec xr, Vec xi, std::comple
   PetscFunctionReturn(0);
 }
 
+// As in solveModes: SLEPc's basic stopping test, then the caller's stop().
+struct StopRequest {
+  const std::function<bool()> *stop;
+  bool stopped = false;
+};
+
+PetscErrorCode stopOnRequest(PEP pep, PetscInt its, PetscInt maxIts, PetscInt nconv, PetscInt nev,
+                             PEPConvergedReason *reason, void *context)
+{
+  auto *request = static_cast<StopRequest *>(context);
+  PetscFunctionBeginUser;
+  PetscCall(PEPStoppingBasic(pep, its, maxIts, nconv, nev, reason, nullptr));
+  if (*reason == PEP_CONVERGED_ITERATING && (*request->stop)()) {
+    request->stopped = true;
+    *reason = PEP_CONVERGED_USER;
+  }
+  PetscFunctionReturn(0);
+}
+
+// One undamped mode x0 = [phi | 0] (multiplier part dropped) tried as an
+// eigenvector of the quadratic problem: classical damping (stiffness- or
+// mass-proportional, Rayleigh) leaves it one, with the roots of the scalar
+// quadratic mass lambda^2 + damping lambda + stiffness = 0 (x0's Rayleigh
+// forms). The multiplier part of the damped eigenvector is a multiple s of
+// the undamped one (for D = eta K: s = 1 + eta lambda); its force
+// c = sigma C^T mu = omega^2 M x0 - K x0 (q rows) enters the residual with
+// the s of least squares. residual: the worse root's
+// ||T(lambda) x|| / (||K x|| + |lambda| ||D x|| + |lambda|^2 ||M x||), the
+// backward error of the pair in the full problem, computed from the vectors
+// (a Gram-matrix form would stop at sqrt(eps)).
+struct ClassicalMode {
+  double mass = 0, damping = 0, stiffness = 0;
+  double residual = 0;
+};
+
+std::array<std::complex<double>, 2> quadraticRoots(double m, double d, double k)
+{
+  const double disc = d * d - 4 * m * k;
+  if (disc < 0) {
+    const std::complex<double> l(-d / (2 * m), std::sqrt(-disc) / (2 * m));
+    return {l, std::conj(l)};
+  }
+  // Real roots without cancellation: the larger in magnitude first, the
+  // other from the product k / m.
+  const double big = -(d + std::sqrt(disc)) / (2 * m);
+  return {big != 0 ? std::complex<double>(k / (m * big)) : 0.0, big};
+}
+
+PetscErrorCode classicalMode(Mat K, Mat D, Mat M, Vec x0, double omega2, ClassicalMode *out)
+{
+  PetscHandle<Vec> a, dv, mv, c, rr, ri;
+  PetscScalar ca, cd, cm, cc;
+  PetscFunctionBeginUser;
+  for (PetscHandle<Vec> *v : {&a, &dv, &mv, &c, &rr, &ri}) PetscCall(VecDuplicate(x0, v->address()));
+  PetscCall(MatMult(K, x0, a));
+  PetscCall(MatMult(D, x0, dv));
+  PetscCall(MatMult(M, x0, mv));
+  PetscCall(VecDot(x0, mv, &out->mass));
+  PetscCall(VecDot(x0, dv, &out->damping));
+  PetscCall(VecDot(x0, a, &out->stiffness));
+  PetscCall(VecAXPBYPCZ(c, omega2, -1.0, 0.0, mv, a)); // c = omega2 M x0 - K x0
+  PetscCall(VecDot(c, a, &ca));
+  PetscCall(VecDot(c, dv, &cd));
+  PetscCall(VecDot(c, mv, &cm));
+  PetscCall(VecDot(c, c, &cc));
+  PetscReal na, nd, nm, nc;
+  PetscCall(VecNorm(a, NORM_2, &na));
+  PetscCall(VecNorm(dv, NORM_2, &nd));
+  PetscCall(VecNorm(mv, NORM_2, &nm));
+  PetscCall(VecNorm(c, NORM_2, &nc));
+  out->residual = 0;
+  for (const std::complex<double> &l : quadraticRoots(out->mass, out->damping, out->stiffness)) {
+    const std::complex<double> l2 = l * l;
+    const std::complex<double> s = cc > 0 ? -(ca + l * cd + l2 * cm) / cc : 0.0;
+    // r = K x0 + lambda D x0 + lambda^2 M x0 + s c, real and imaginary parts.
+    PetscCall(VecCopy(a, rr));
+    PetscCall(VecAXPBYPCZ(rr, l.real(), l2.real(), 1.0, dv, mv));
+    PetscCall(VecAXPY(rr, s.real(), c));
+    PetscCall(VecAXPBYPCZ(ri, l.imag(), l2.imag(), 0.0, dv, mv));
+    PetscCall(VecAXPY(ri, s.imag(), c));
+    PetscReal nr, ni;
+    PetscCall(VecNorm(rr, NORM_2, &nr));
+    PetscCall(VecNorm(ri, NORM_2, &ni));
+    // ||K x|| of x = [phi | s mu]: K x = a + s c.
+    const double kx = std::abs(s) * nc + na;
+    const double scale = kx + std::abs(l) * nd + std::norm(l) * nm;
+    out->residual = std::max(out->residual, scale > 0 ? std::hypot(nr, ni) / scale : 0.0);
+  }
+  PetscFunctionReturn(0);
+}
+
+// The damped modes of the undamped ones when every one of them is an
+// eigenvector of the quadratic problem to 1e-8 (*classical); otherwise
+// nothing is filled.
+PetscErrorCode classicalDampedModes(Mat K, Mat D, Mat M, const ModalResult &undamped, int count,
+                                    DampedModalResult *result, bool *classical)
+{
+  std::vector<ClassicalMode> modes(count);
+  PetscFunctionBeginUser;
+  *classical = false;
+  if ((int)undamped.vectors.size() < count) PetscFunctionReturn(0);
+  for (int k = 0; k < count; ++k) {
+    PetscCall(classicalMode(K, D, M, undamped.vectors[k], undamped.omega2[k], &modes[k]));
+    if (!(modes[k].residual <= 1e-8) || !(modes[k].mass > 0) || !(modes[k].stiffness >= 0))
+      PetscFunctionReturn(0);
+  }
+  *classical = true;
+  *result = DampedModalResult{};
+  result->classical = true;
+  for (const ClassicalMode &c : modes) {
+    const double m = c.mass, d = c.damping, k = c.stiffness;
+    const double omega = std::sqrt(k / m), disc = d * d - 4 * m * k;
+    result->omega.push_back(omega);
+    result->dampingRatio.push_back(omega > 0 ? d / (2 * std::sqrt(m * k)) : std::nan(""));
+    result->dampedOmega.push_back(disc < 0 ? std::sqrt(-disc) / (2 * m) : 0.0);
+    const std::array<std::complex<double>, 2> roots = quadraticRoots(m, d, k);
+    std::array<double, 2> rates{-roots[0].real(), -roots[1].real()};
+    if (rates[0] > rates[1]) std::swap(rates[0], rates[1]);
+    result->decayRates.push_back(rates);
+    result->residuals.push_back(c.residual);
+  }
+  PetscFunctionReturn(0);
+}
+
 } // namespace
 
 PetscErrorCode appendDampedMode(Assembler &assembler, std::complex<double> lambda, Vec xr, Vec xi, double residual,
@@ -140,7 +274,11 @@ PetscErrorCode appendDampedMode(Assembler &assembler, std::complex<double> lambd
   const double modulus = std::abs(lambda);
   result->dampedOmega.push_back(std::abs(lambda.imag()));
   result->omega.push_back(modulus);
-  result->dampingRatio.push_back(-lambda.real() / modulus);
+  const bool isReal = lambda.imag() == 0;
+  // A lone real eigenvalue (overdamped; its partner is not among those
+  // reported): no damping ratio of its own.
+  result->dampingRatio.push_back(isReal ? std::nan("") : -lambda.real() / modulus);
+  result->decayRates.push_back(std::array<double, 2>{-lambda.real(), isReal ? std::nan("") : -lambda.real()});
   result->residuals.push_back(residual);
   if (keepVector) {
     PetscHandle<Vec> r, i;
@@ -218,6 +356,29 @@ PetscErrorCode solveDampedModes(Assembler &assembler, double t, Vec q, Vec lambd
              count, finiteBound);
 
   Mat ops[3] = {K, D, M};
+  if (options.undamped && !options.allowFewer) {
+    // Classical damping: the damped versions of the undamped modes, no PEP
+    // solve (heavy damping puts the slow real eigenvalues of every higher
+    // mode into a cluster at -1/eta, of smallest |lambda|, where PEP ran
+    // into thousands of near-equal eigenvalues on fine meshes).
+    bool classical;
+    PetscCall(classicalDampedModes(K, D, M, *options.undamped, count, result, &classical));
+    if (classical) {
+      result->shapes = options.undamped->shapes;
+      if (options.keepVectors)
+        for (int k = 0; k < count; ++k) {
+          PetscHandle<Vec> r, i;
+          PetscCall(VecDuplicate(options.undamped->vectors[k], r.address()));
+          PetscCall(VecCopy(options.undamped->vectors[k], r));
+          PetscCall(VecDuplicate(r, i.address()));
+          PetscCall(VecSet(i, 0.0));
+          result->real.push_back(std::move(r));
+          result->imag.push_back(std::move(i));
+        }
+      PetscCall(PetscLogEventEnd(logEvents().eigen, 0, 0, 0, 0));
+      PetscFunctionReturn(0);
+    }
+  }
   PetscCall(PEPCreate(assembler.comm(), pep.address()));
   PetscCall(PEPSetOptionsPrefix(pep, "modal_"));
   PetscCall(PEPSetOperators(pep, 3, ops));
@@ -230,6 +391,8 @@ PetscErrorCode solveDampedModes(Assembler &assembler, double t, Vec q, Vec lambd
   PetscCall(STSetType(st, STSINVERT));
   PetscCall(STGetKSP(st, &ksp));
   PetscCall(useAnalysisDirectSolver(ksp));
+  StopRequest request{&options.stop};
+  if (options.stop) PetscCall(PEPSetStoppingTestFunction(pep, stopOnRequest, &request, nullptr));
 
   std::vector<Candidate> modes;
   std::vector<double> re, im;
@@ -237,17 +400,24 @@ PetscErrorCode solveDampedModes(Assembler &assembler, double t, Vec q, Vec lambd
     const PetscInt ncv = std::max(std::min(std::max(2 * nev, nev + 15), 2 * finiteBound), nev + 1);
     PetscCall(PEPSetDimensions(pep, nev, ncv, PETSC_DEFAULT));
     PetscCall(PEPSetFromOptions(pep));
-    PetscCall(PEPSolve(pep));
+    if (options.stop && !request.stopped && options.stop()) request.stopped = true;
+    if (!request.stopped) PetscCall(PEPSolve(pep));
+    if (request.stopped) {
+      *result = DampedModalResult{};
+      result->interrupted = true;
+      PetscCall(PetscLogEventEnd(logEvents().eigen, 0, 0, 0, 0));
+      PetscFunctionReturn(0);
+    }
     PetscInt nconv;
     PetscCall(PEPGetConverged(pep, &nconv));
     re.assign(nconv, 0.0);
     im.assign(nconv, 0.0);
     for (PetscInt i = 0; i < nconv; ++i) PetscCall(PEPGetEigenpair(pep, i, &re[i], &im[i], nullptr, nullptr));
     int dropped;
-    modes = acceptModes(re, im, options.target, &dropped);
+    modes = acceptModes(re, im, options.target, !options.allowFewer, &dropped);
     if ((PetscInt)modes.size() >= count || options.allowFewer) break;
     PetscCheck(nev < 2 * finiteBound, assembler.comm(), PETSC_ERR_NOT_CONVERGED,
-               "damped eigen-analysis: only %zu oscillating modes of %d requested were found (%" PetscInt_FMT
+               "damped eigen-analysis: only %zu modes of %d requested were found (%" PetscInt_FMT
                " eigenvalues converged, %d infinite or non-oscillating)",
                modes.size(), count, nconv, dropped);
     nev = std::min(2 * finiteBound, nev + 2 * (count - (PetscInt)modes.size()) + 2);
@@ -270,7 +440,7 @@ PetscErrorCode solveDampedModes(Assembler &assembler, double t, Vec q, Vec lambd
     // value from the transformed problem differed by up to 1.7e-10 relative
     // between 1 and 2 ranks (as in solveModes).
     std::complex<double> lambdaPair(c.re, c.im);
-    PetscCall(quadraticRayleighQuotient(ops, vr, vi, &lambdaPair));
+    if (c.im != 0) PetscCall(quadraticRayleighQuotient(ops, vr, vi, &lambdaPair)); // a real one stays real
     const double modulus = std::abs(lambdaPair);
     PetscCheck(err < 1e-8, assembler.comm(), PETSC_ERR_NOT_CONVERGED,
                "damped eigen-analysis: mode %d (%.6g rad/s) did not converge (backward error %.3g)", k + 1, modulus,

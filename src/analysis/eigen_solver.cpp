@@ -12,6 +12,7 @@
 #include <cmath>
 #include <numeric>
 #include <cstdio>
+#include <functional>
 #include <stdexcept>
 #include <string>
 
@@ -76,6 +77,66 @@ PetscErrorCode reportRejected(MPI_Comm comm, const std::string &why)
   if (reported++ < 5)
     PetscCall(PetscPrintf(comm, "warning: eigen-analysis: pair not reported as a mode: %s%s\n", why.c_str(),
                           reported == 5 ? " (further rejections not shown)" : ""));
+  PetscFunctionReturn(0);
+}
+
+// SLEPc's stopping test with an interrupt: the basic test, then the caller's
+// stop() (SIGINT/SIGTERM), so that a long solve ends within one iteration
+// instead of after it (issue 40). EPS_CONVERGED_USER ends EPSSolve normally.
+struct StopRequest {
+  const std::function<bool()> *stop;
+  bool stopped = false;
+};
+
+PetscErrorCode stopOnRequest(EPS eps, PetscInt its, PetscInt maxIts, PetscInt nconv, PetscInt nev,
+                             EPSConvergedReason *reason, void *context)
+{
+  auto *request = static_cast<StopRequest *>(context);
+  PetscFunctionBeginUser;
+  PetscCall(EPSStoppingBasic(eps, its, maxIts, nconv, nev, reason, nullptr));
+  if (*reason == EPS_CONVERGED_ITERATING && (*request->stop)()) {
+    request->stopped = true;
+    *reason = EPS_CONVERGED_USER;
+  }
+  PetscFunctionReturn(0);
+}
+
+// Relative residuals of a pair at the round-off floor of the pencil (see
+// solveModes): above kFloorWarned the run is told the frequency is uncertain
+// by about that much; above kFloorRefused the analysis stops.
+constexpr double kFloorWarned = 1e-5, kFloorRefused = 1e-2;
+
+// The finest beam mesh of the model, for the messages about the floor: the
+// beam whose element bending frequency sqrt(EI / rhoA) / l^2 is highest
+// (the stiffest element modes set the floor).
+std::string finestMesh(const Model &model)
+{
+  const BodySpec *finest = nullptr;
+  double highest = 0;
+  for (const BodySpec &b : model.scene().bodies) {
+    if (b.type != BodySpec::Type::AncfBeam || !(b.section.rhoA > 0) || b.elements < 1) continue;
+    const double l = b.length / b.elements, w = std::sqrt(b.section.EI / b.section.rhoA) / (l * l);
+    if (!finest || w > highest) finest = &b, highest = w;
+  }
+  if (!finest) return "the pencil is ill-conditioned";
+  char text[256];
+  std::snprintf(text, sizeof text,
+                "the mesh is too fine for double precision: body '%s' has %d elements of %.3g m (the floor grows about "
+                "like the 3.5th power of the element count)",
+                finest->name.c_str(), finest->elements, finest->length / finest->elements);
+  return text;
+}
+
+// The first five pairs of a process accepted at a floor above kFloorWarned.
+PetscErrorCode reportFloor(MPI_Comm comm, int mode, double hz, double residual, const std::string &mesh)
+{
+  static int reported = 0;
+  PetscFunctionBeginUser;
+  if (reported++ < 5)
+    PetscCall(PetscPrintf(comm,
+                          "warning: eigen-analysis: mode %d (%.6g Hz) lies at the round-off floor of the pencil "
+                          "(relative residual %.2g): its frequency may be off by several times that; %s%s\n",
+                          mode, hz, residual, mesh.c_str(), reported == 5 ? " (further warnings not shown)" : ""));
   PetscFunctionReturn(0);
 }
 
@@ -215,6 +276,8 @@ PetscErrorCode solveModes(Assembler &assembler, double t, Vec q, Vec lambda, int
   PetscCall(STSetType(st, STSINVERT));
   PetscCall(STGetKSP(st, &ksp));
   PetscCall(useAnalysisDirectSolver(ksp));
+  StopRequest request{&options.stop};
+  if (options.stop) PetscCall(EPSSetStoppingTestFunction(eps, stopOnRequest, &request, nullptr));
 
   // Solve for nev pairs; keep the finite, non-negative ones; if fewer than
   // `count` remain, ask for more (never beyond nf).
@@ -226,7 +289,14 @@ PetscErrorCode solveModes(Assembler &assembler, double t, Vec q, Vec lambda, int
     const PetscInt ncv = std::max(std::min(std::max(2 * nev, nev + 15), finiteBound), nev + 1);
     PetscCall(EPSSetDimensions(eps, nev, ncv, PETSC_DEFAULT));
     PetscCall(EPSSetFromOptions(eps));
-    PetscCall(EPSSolve(eps));
+    if (options.stop && !request.stopped && options.stop()) request.stopped = true;
+    if (!request.stopped) PetscCall(EPSSolve(eps));
+    if (request.stopped) {
+      *result = ModalResult{};
+      result->interrupted = true;
+      PetscCall(PetscLogEventEnd(logEvents().eigen, 0, 0, 0, 0));
+      PetscFunctionReturn(0);
+    }
     PetscInt nconv;
     PetscCall(EPSGetConverged(eps, &nconv));
     PetscCheck(nconv >= count, assembler.comm(), PETSC_ERR_NOT_CONVERGED,
@@ -273,18 +343,37 @@ PetscErrorCode solveModes(Assembler &assembler, double t, Vec q, Vec lambda, int
     }
     // An eigenpair that did not converge (rigid-body modes of a mechanism:
     // a singular stiffness) must not be reported as a frequency. The relative
-    // residual |A x - w B x| / |w x| of a low mode of a stiff, fine mesh sits
-    // at a round-off floor of order eps |A| / w (2.7e-6 was seen for a 12 Hz
-    // mode at 32 elements per boom), so a clearly positive eigenvalue whose
-    // backward error is at round-off level is accepted as well.
+    // residual |A x - w B x| / |w x| of a low mode of a fine mesh sits at the
+    // round-off floor of the pencil (backward error at round-off level): the
+    // stiffest element modes, whose omega^2 grows like the 4th power of the
+    // element count, swamp the low ones in double precision, and the
+    // eigenvalue's error follows the residual (measured on the 2 m
+    // cantilever, docs/model.md §5: frequency error 0.5-3 times the residual,
+    // the residual growing about like the 3.5th power of the element count;
+    // 2.7e-6 was seen for a 12 Hz mode at 32 elements per boom). Such a pair
+    // is kept up to kFloorRefused, with a warning above kFloorWarned; above it
+    // the frequency is not determined and the analysis stops, saying so.
     PetscReal backward;
     PetscCall(EPSComputeError(eps, i, EPS_ERROR_BACKWARD, &backward));
-    const bool converged = err < 1e-6 || (backward < 1e-10 && w > 1e-2);
+    const bool atFloor = backward < 1e-10;
+    const bool converged = err < 1e-6 || (atFloor && w > 1e-2 && err <= kFloorRefused);
+    // A value well away from 0 (residual below the value itself) that is not
+    // determined: the mesh, not a mechanism.
+    PetscCheck(converged || !atFloor || !(err < 1.0), assembler.comm(), PETSC_ERR_NOT_CONVERGED,
+               "eigen-analysis: eigenpair %" PetscInt_FMT " (omega^2 = %.4g rad^2/s^2) is not determined in double "
+               "precision: its relative residual %.3g is the round-off floor of the pencil (backward error %.1e), and "
+               "the frequency can be off by several times that: %s; use fewer elements (docs/model.md §5)",
+               (PetscInt)(k + 1), (double)w, (double)err, (double)backward,
+               finestMesh(assembler.model()).c_str());
     // A model error found by the analysis: reported like the user errors (one line, no location).
     PetscCheck(converged, assembler.comm(), PETSC_ERR_NOT_CONVERGED,
                "eigen-analysis: eigenpair %" PetscInt_FMT " (%.3g rad^2/s^2) did not converge (relative residual %.3g): "
                "the stiffness is singular, the system is a mechanism with rigid-body modes (a body or motion without "
-               "support)", (PetscInt)(k + 1), (double)w, (double)err);
+               "support)%s", (PetscInt)(k + 1), (double)w, (double)err,
+               atFloor ? (" (or the pencil's round-off floor hides the lowest modes: " + finestMesh(assembler.model()) + ")").c_str() : "");
+    if (err > kFloorWarned)
+      PetscCall(reportFloor(assembler.comm(), (int)k + 1, std::sqrt(std::max(w, 0.0)) / (2 * M_PI), err,
+                            finestMesh(assembler.model())));
     if (options.keepVectors) {
       PetscHandle<Vec> v;
       PetscCall(VecDuplicate(xr, v.address()));

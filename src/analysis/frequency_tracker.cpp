@@ -92,10 +92,11 @@ PetscErrorCode FrequencyTracker::restore(const StateReader &in)
 }
 
 PetscErrorCode FrequencyTracker::solveFully(double t, Vec q, Vec lambda, double target, Vec guess, int wanted,
-                                            std::vector<double> *omega2)
+                                            std::vector<double> *omega2, bool *interrupted)
 {
   PetscFunctionBeginUser;
   ModalOptions options;
+  options.stop = stop;
   options.keepVectors = true;
   options.target = target;
   options.initialGuess = guess;
@@ -106,6 +107,8 @@ PetscErrorCode FrequencyTracker::solveFully(double t, Vec q, Vec lambda, double 
   const int nev = fullSolve_ ? wanted : (int)std::min<PetscInt>(bound, wanted + std::max(2, wanted / 2));
   ModalResult modes;
   PetscCall(solveModes(assembler_, t, q, lambda, nev, &modes, options));
+  *interrupted = modes.interrupted;
+  if (*interrupted) PetscFunctionReturn(0); // the basis of the last analysis stays
   basis_ = std::move(modes.vectors);
   omega2->assign(modes.omega2.begin(), modes.omega2.begin() + std::min<std::size_t>(wanted, modes.omega2.size()));
   PetscFunctionReturn(0);
@@ -177,7 +180,14 @@ PetscErrorCode FrequencyTracker::analyze(double t, Vec q, Vec lambda, TrackedMod
                             t, r.worstResidual, r.iterations));
     }
   }
-  if (!refined) PetscCall(solveFully(t, q, lambda, target, started ? previous_[0].get() : nullptr, wanted, &omega2));
+  if (!refined) {
+    bool interrupted = false;
+    PetscCall(solveFully(t, q, lambda, target, started ? previous_[0].get() : nullptr, wanted, &omega2, &interrupted));
+    if (interrupted) {
+      out->interrupted = true;
+      PetscFunctionReturn(0);
+    }
+  }
 
   // Candidates for the followed modes: the modes found, multipliers dropped.
   PetscHandle<Vec> zero, candidate;
@@ -331,7 +341,12 @@ PetscErrorCode FrequencyTracker::analyzeDamped(double t, Vec q, Vec lambda, Trac
     DampedModalOptions options;
     options.allowFewer = true; // heavy damping: few oscillating modes (damped_eigen_solver.hpp)
     options.keepVectors = modes != nullptr;
+    options.stop = stop;
     PetscCall(solveDampedModes(assembler_, t, q, lambda, found_, &dm, options));
+    if (dm.interrupted) {
+      out->interrupted = true;
+      PetscFunctionReturn(0);
+    }
   }
   out->damped = true;
   out->dampedRefined = refined;

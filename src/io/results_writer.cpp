@@ -396,6 +396,7 @@ void ResultsWriter::writeModeArrays(double t, const ModalResult &modes)
     file_->writeArray("/modal/damped_frequencies_hz", modes.dampedFrequencyHz, {k});
     file_->writeArray("/modal/undamped_equivalent_hz", modes.undampedEquivalentHz, {k});
     file_->writeArray("/modal/damping_ratio", modes.dampingRatio, {k});
+    file_->writeArray("/modal/decay_rates", modes.decayRates, {k, 2});
   }
   file_->setAttribute("/modal", "state_time", t);
   file_->flush();

@@ -21,6 +21,7 @@
 #include <fstream>
 #include <map>
 #include <optional>
+#include <set>
 #include <sstream>
 #include <system_error>
 
@@ -49,6 +50,7 @@ private:
   ModalSpec parseModal(const Field &f, bool required_nonzero) const;
   void parseOutput(const Field &f, Scene &scene) const;
   void parseFollow(const Field &f, TrackingSpec &tracking) const;
+  void refuseTrackingWithFreeFriction(const Field &tracking, const Scene &scene) const;
 };
 
 // tracking.follow: a number of lowest modes, or a list of frequencies (Hz)
@@ -73,6 +75,30 @@ void SceneParser::parseFollow(const Field &f, TrackingSpec &tracking) const
       report_.fail(f, "follows the lowest " + std::to_string(tracking.follow) + " modes but each analysis finds only " +
                           "count of them" + count + ": raise tracking.count");
   }
+}
+
+// Frequency tracking linearizes with the LuGre bristle state z frozen
+// (docs/model.md §5): the friction force is then a constant load, and a
+// joint whose slide no extraction_drive prescribes has no tangential
+// stiffness at all, stick or slip. Every analysis would stop with "the system
+// is a mechanism" (issue 40). In stick the right linearization is a spring
+// sigma0 |lambda_n| between track and slider (z follows the relative
+// displacement), in slip none (a zero-frequency sliding mode); the pencil
+// would have to know which, from the velocities it does not see. Refused
+// here, naming the keys, instead of failing at the first analysis.
+void SceneParser::refuseTrackingWithFreeFriction(const Field &tracking, const Scene &scene) const
+{
+  std::set<std::string> driven;
+  for (const ComponentSpec &c : scene.constraints)
+    if (c.type == "extraction_drive" && c.has("joint")) driven.insert(c.text("joint"));
+  for (const ComponentSpec &c : scene.constraints)
+    if (c.type == "sliding_joint" && c.has("friction") && !driven.count(c.name))
+      report_.fail(tracking, "frequency tracking with LuGre friction at a freely sliding joint is not supported: "
+                             "constraint '" + c.name + "' has 'friction' and no extraction_drive prescribes its "
+                             "slide. The eigen-analysis freezes the bristle state z, so the joint has no tangential "
+                             "stiffness (stick: the bristle spring sigma0 times the normal force is missing; slip: "
+                             "a zero-frequency sliding mode) and every analysis would stop as a mechanism. Remove "
+                             "'tracking' or the joint's 'friction' (docs/model.md §5)");
 }
 
 void SceneParser::parse(const Field &root, Scene &scene)
@@ -132,6 +158,7 @@ void SceneParser::parse(const Field &root, Scene &scene)
     if (const auto sa = m.get("shapes_at"))
       for (const Field &item : list(*sa)) scene.tracking.shapesAt.push_back(nonNegative(item));
     if (const auto fo = m.get("follow")) parseFollow(*fo, scene.tracking);
+    refuseTrackingWithFreeFriction(*tr, scene);
   }
   if (const auto o = top.get("output"))
     parseOutput(*o, scene);

@@ -169,8 +169,10 @@ PetscErrorCode Simulation::runDynamic(const std::function<bool()> &stop)
                           }()));
   if (summary_.completed && options_.modal && scene_.modal.count > 0) {
     const bool atStart = scene_.modal.at == "start";
+    bool stopped = false;
     PetscCall(modalAnalysis(atStart ? 0.0 : integrator_->time(), atStart ? x_.get() : integrator_->positions(),
-                            integrator_->multipliers()));
+                            integrator_->multipliers(), stop, &stopped));
+    if (stopped) outcome_.status = "interrupted";
   }
   PetscCall(finish(state));
   PetscFunctionReturn(0);

@@ -29,6 +29,7 @@ PetscErrorCode FrequencyTracking::setUp()
   const TrackingSpec &spec = sim_.scene().tracking;
   tracker_ = std::make_unique<FrequencyTracker>(sim_.assembler(), spec.count, sim_.options().trackingFullSolve,
                                                 spec.follow, spec.followHz);
+  tracker_->stop = sim_.stopRequest(); // SIGINT/SIGTERM inside a full eigen-solve
   PetscFunctionReturn(0);
 }
 
@@ -38,10 +39,13 @@ PetscErrorCode FrequencyTracking::track(const RunState &s, double h)
   if (s.t < next_ - 1e-9 * h) PetscFunctionReturn(0);
   TrackedModes modes;
   PetscCall(tracker_->analyze(s.t, s.q, s.lambda, &modes));
+  // Stopped inside an eigen-solve: no row; the run ends after this step.
+  if (modes.interrupted) PetscFunctionReturn(0);
   // Physical damping (Kelvin-Voigt sections, dampers) takes the damped
   // path; friction's velocity terms alone do not (WorkItem::physicalDamping).
   if (damped_ < 0) damped_ = sim_.model().hasPhysicalDamping();
   if (damped_) PetscCall(trackDamped(s, &modes));
+  if (modes.interrupted) PetscFunctionReturn(0);
   bool shape = false;
   // shapeTimes_ is sorted latest first: the due times come off its back.
   while (!shapeTimes_.empty() && shapeTimes_.back() <= s.t + 1e-9 * h) {

@@ -56,6 +56,7 @@ PetscErrorCode Simulation::run(const std::function<bool()> &stop)
   PetscCall(PetscTime(&started_));
   outcome_ = RunOutcome{};
   outcome_.dynamic = integrator_ != nullptr;
+  stop_ = stop;
   for (auto &m : monitors_) PetscCall(m->setUp());
   if (integrator_) PetscCall(runDynamic(stop));
   else PetscCall(runStatic(stop));
@@ -92,23 +93,35 @@ PetscErrorCode Simulation::finish(const RunState &state)
 }
 
 // SLEPc is initialized only by runs that ask for modes.
-PetscErrorCode Simulation::modalAnalysis(double t, Vec q, Vec lambda)
+PetscErrorCode Simulation::modalAnalysis(double t, Vec q, Vec lambda, const std::function<bool()> &stop,
+                                         bool *interrupted)
 {
   PetscFunctionBeginUser;
   PetscCall(SlepcInitialize(nullptr, nullptr, nullptr, nullptr));
   ModalResult modes;
-  PetscCall(solveModes(assembler_, t, q, lambda, scene_.modal.count, &modes));
+  const bool damped = model_.hasPhysicalDamping();
+  ModalOptions options;
+  options.stop = stop;
+  options.keepVectors = damped; // the damped analysis tries them first (classical damping)
+  PetscCall(solveModes(assembler_, t, q, lambda, scene_.modal.count, &modes, options));
+  *interrupted = modes.interrupted;
+  if (*interrupted) PetscFunctionReturn(0);
   // A model with physical damping (Kelvin-Voigt sections, dampers; not
   // friction's velocity terms) also gets its damped modes (SLEPc PEP,
   // docs/model.md §5).
-  const bool damped = model_.hasPhysicalDamping();
   if (damped) {
     DampedModalResult dm;
-    PetscCall(solveDampedModes(assembler_, t, q, lambda, scene_.modal.count, &dm));
+    DampedModalOptions dampedOptions;
+    dampedOptions.stop = stop;
+    dampedOptions.undamped = &modes;
+    PetscCall(solveDampedModes(assembler_, t, q, lambda, scene_.modal.count, &dm, dampedOptions));
+    *interrupted = dm.interrupted;
+    if (*interrupted) PetscFunctionReturn(0);
     for (std::size_t k = 0; k < dm.omega.size(); ++k) {
       modes.dampedFrequencyHz.push_back(dm.dampedOmega[k] / (2.0 * M_PI));
       modes.undampedEquivalentHz.push_back(dm.omega[k] / (2.0 * M_PI));
       modes.dampingRatio.push_back(dm.dampingRatio[k]);
+      modes.decayRates.insert(modes.decayRates.end(), dm.decayRates[k].begin(), dm.decayRates[k].end());
     }
   }
   for (auto &m : monitors_) PetscCall(m->modes(t, modes));
@@ -117,9 +130,12 @@ PetscErrorCode Simulation::modalAnalysis(double t, Vec q, Vec lambda)
     for (std::size_t k = 0; k < modes.frequencyHz.size(); ++k) {
       PetscCall(PetscPrintf(comm_, "  mode %2zu  f = %12.6f Hz  (relative residual %.1e)", k + 1,
                             modes.frequencyHz[k], modes.residuals[k]));
-      if (damped)
+      if (damped && modes.dampedFrequencyHz[k] > 0)
         PetscCall(PetscPrintf(comm_, "  damped: f_d = %12.6f Hz, zeta = %.6f", modes.dampedFrequencyHz[k],
                               modes.dampingRatio[k]));
+      else if (damped) // real eigenvalues: no oscillation, two decay rates
+        PetscCall(PetscPrintf(comm_, "  damped: overdamped (f_d = 0), zeta = %.6g, decay rates %.6g, %.6g 1/s",
+                              modes.dampingRatio[k], modes.decayRates[2 * k], modes.decayRates[2 * k + 1]));
       PetscCall(PetscPrintf(comm_, "\n"));
     }
   }

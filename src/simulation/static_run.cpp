@@ -19,11 +19,15 @@ PetscErrorCode Simulation::runStatic(const std::function<bool()> &stop)
   const double t = scene_.statics.time;
   const bool modal = options_.modal && scene_.modal.count > 0;
   const bool modesAtStart = modal && scene_.modal.at == "start";
-  // Interrupts are honoured between load increments and before an
-  // eigen-analysis (SLEPc's solve itself is not interruptible).
+  // Interrupts are honoured between load increments, before an
+  // eigen-analysis and at every iteration of its solver.
   bool interrupted = false;
   auto stopRequested = [&] { return interrupted = interrupted || (stop && stop()); };
-  if (modesAtStart && !stopRequested()) PetscCall(modalAnalysis(t, x_, noMultipliers));
+  if (modesAtStart && !stopRequested()) {
+    bool stopped = false;
+    PetscCall(modalAnalysis(t, x_, noMultipliers, stopRequested, &stopped));
+    interrupted = interrupted || stopped;
+  }
 
   auto onLoadStep = [&](const LoadStepInfo &s) -> PetscErrorCode {
     AssemblyContext ctx;
@@ -52,7 +56,11 @@ PetscErrorCode Simulation::runStatic(const std::function<bool()> &stop)
   state.t = t;
   state.lambda = statics_->multipliers();
   outcome_.endTime = t;
-  if (converged && modal && !modesAtStart) PetscCall(modalAnalysis(t, x_, statics_->multipliers()));
+  if (converged && modal && !modesAtStart) {
+    bool stopped = false;
+    PetscCall(modalAnalysis(t, x_, statics_->multipliers(), stopRequested, &stopped));
+    if (stopped) outcome_.status = "interrupted";
+  }
   PetscCall(finish(state));
   PetscFunctionReturn(0);
 }

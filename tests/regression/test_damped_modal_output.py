@@ -1,6 +1,7 @@
 #!/usr/bin/env python3
 """A modal scene of a damped model writes its damped modes (docs/output.md,
-/modal/damped_frequencies_hz, undamped_equivalent_hz, damping_ratio), and
+/modal/damped_frequencies_hz, undamped_equivalent_hz, damping_ratio,
+decay_rates; an overdamped cantilever its two real decay rates per mode), and
 frequency tracking in a dynamic run of it writes /tracking/damping_ratio and
 tracked_damped_hz; an undamped model writes none of them. The 16-element steel cantilever with damping_ratio
 0.02 at its first frequency f_1 has stiffness-proportional damping D = eta K,
@@ -69,6 +70,25 @@ def main():
         check(e_zeta < 1e-4, "zeta_n = 0.02 f_n / f_1 for modes 1-4 (worst relative error %.2e)" % e_zeta)
         check(e_fd < 1e-4, "f_d,n = f_n sqrt(1 - zeta_n^2) (worst relative error %.2e)" % e_fd)
         check(e_abs < 1e-4, "|lambda_n| / 2 pi = f_n (worst relative error %.2e)" % e_abs)
+    # Heavy damping (issue 40): zeta_1 = 2, every mode overdamped. Two real
+    # decay rates per mode, omega_n (zeta_n -+ sqrt(zeta_n^2 - 1)), no damped
+    # frequency, the damping ratio above 1 (was: invented MHz modes).
+    with h5py.File(run("overdamped_modal", ", damping_ratio: 2.0, damping_frequency: %.17g" % f1)) as f:
+        m = f["modal"]
+        check("decay_rates" in m and m["decay_rates"].shape == (4, 2), "decay_rates (4, 2) written")
+        if "decay_rates" not in m:
+            return
+        omega = 2 * np.pi * m["frequencies_hz"][()]
+        zeta = 2.0 * m["frequencies_hz"][()] / f1
+        fast = omega * (zeta + np.sqrt(zeta**2 - 1))
+        slow = omega**2 / fast
+        rates = m["decay_rates"][()]
+        e_rates = max(np.max(np.abs(rates[:, 0] - slow) / slow), np.max(np.abs(rates[:, 1] - fast) / fast))
+        e_zeta = np.max(np.abs(m["damping_ratio"][()] - zeta) / zeta)
+        check(e_rates < 1e-8, "overdamped: both decay rates of modes 1-4 in closed form (worst relative error %.2e)"
+              % e_rates)
+        check(e_zeta < 1e-8, "overdamped: zeta_n = 2 f_n / f_1 > 1 (worst relative error %.2e)" % e_zeta)
+        check(np.all(m["damped_frequencies_hz"][()] == 0), "overdamped: no damped frequency (0)")
     with h5py.File(run("undamped_tracking", "", TRACKING)) as f:
         check("damping_ratio" not in f["tracking"], "undamped tracking writes no damping ratio")
     with h5py.File(run("damped_tracking", ", damping_ratio: 0.02, damping_frequency: %.17g" % f1, TRACKING)) as f:

@@ -147,13 +147,17 @@ TEST(DampedModes, TipDamperMatchesDenseReference)
   std::vector<std::complex<double>> ref;
   for (int i = 0; i < 2 * n; ++i) {
     const std::complex<double> lambda = s * qz.alphas()(i) / qz.betas()(i);
+    // Modes: one of each conjugate pair (Im > 0) and the real eigenvalues
+    // (overdamped motions, kept by the modal analysis since issue 40).
     if (lambda.imag() > 1e-10 * std::abs(lambda)) ref.push_back(lambda);
+    else if (std::abs(lambda.imag()) <= 1e-10 * std::abs(lambda)) ref.push_back(lambda.real());
   }
   // The QZ values carry errors of ~1e-7 here (the ANCF gradient and position
   // coordinates make P badly scaled); Newton's method on det P(lambda),
   // lambda <- lambda - 1 / trace(P^-1 P'), refines each to round-off.
   for (std::complex<double> &lambda : ref) {
     const std::complex<double> fromQZ = lambda;
+    const bool isReal = lambda.imag() == 0;
     for (int it = 0; it < 8; ++it) {
       const Eigen::MatrixXcd P = (lambda * lambda) * Mr.cast<std::complex<double>>() + lambda * Dr.cast<std::complex<double>>() +
                                  Kr.cast<std::complex<double>>();
@@ -165,11 +169,26 @@ TEST(DampedModes, TipDamperMatchesDenseReference)
       // step would be noise).
       if (std::abs(step) < 1e-6 * std::abs(lambda)) break;
     }
+    if (isReal) lambda = lambda.real(); // a real root of a real polynomial
     EXPECT_LT(std::abs(lambda - fromQZ), 1e-5 * std::abs(fromQZ)) << "Newton left the QZ eigenvalue";
   }
-  std::sort(ref.begin(), ref.end(), [](auto a, auto b) { return a.imag() < b.imag(); });
+  // Ascending |lambda|, the order of the modal analysis (the damper makes
+  // one real eigenvalue among the four smallest).
+  std::sort(ref.begin(), ref.end(), [](auto a, auto b) { return std::abs(a) < std::abs(b); });
   ASSERT_GE((int)ref.size(), count);
+  ASSERT_EQ((int)dm.decayRates.size(), count);
+  int real = 0;
   for (int k = 0; k < count; ++k) {
+    const double eRate = std::abs(dm.decayRates[k][0] + ref[k].real()) / std::abs(ref[k].real());
+    if (ref[k].imag() == 0) { // overdamped: no oscillation, no ratio of its own
+      ++real;
+      PetscPrintf(PETSC_COMM_WORLD, "  mode %d: real, decay rate PEP %.10f dense %.10f (rel %.1e), f_d %g\n", k + 1,
+                  dm.decayRates[k][0], -ref[k].real(), eRate, dm.dampedOmega[k]);
+      EXPECT_EQ(dm.dampedOmega[k], 0.0) << "mode " << k + 1;
+      EXPECT_TRUE(std::isnan(dm.dampingRatio[k])) << "mode " << k + 1;
+      EXPECT_LT(eRate, 1e-8) << "mode " << k + 1;
+      continue;
+    }
     const double zetaRef = -ref[k].real() / std::abs(ref[k]);
     const double eD = std::abs(dm.dampedOmega[k] - ref[k].imag()) / ref[k].imag();
     const double eZ = std::abs(dm.dampingRatio[k] - zetaRef) / zetaRef;
@@ -177,7 +196,9 @@ TEST(DampedModes, TipDamperMatchesDenseReference)
                 k + 1, dm.dampedOmega[k], ref[k].imag(), eD, dm.dampingRatio[k], zetaRef, eZ);
     EXPECT_LT(eD, 1e-8) << "mode " << k + 1;
     EXPECT_LT(eZ, 1e-8) << "mode " << k + 1;
+    EXPECT_LT(eRate, 1e-8) << "mode " << k + 1;
   }
+  EXPECT_EQ(real, 1) << "the damper's real eigenvalue is reported as an overdamped mode, not dropped";
 }
 
 TEST(DampedModes, OnlyPhysicalDampingTakesTheDampedPath)
@@ -207,4 +228,70 @@ TEST(DampedModes, OnlyPhysicalDampingTakesTheDampedPath)
   EXPECT_TRUE(Linearization(cantilever(4, "", spring + ", damping: 3000}\n")).model.hasPhysicalDamping());
   EXPECT_FALSE(Linearization(cantilever(4, "", spring + "}\n")).model.hasPhysicalDamping());
   EXPECT_FALSE(Linearization(cantilever(4, "")).model.hasPhysicalDamping());
+}
+
+TEST(DampedModes, HeavyStiffnessProportionalDampingGivesOverdampedModesInClosedForm)
+{
+  // D = eta K (damping_ratio zeta1 at the first frequency f1, eta = zeta1 /
+  // (pi f1)): every undamped mode is an eigenvector of the quadratic problem
+  // with zeta_n = eta omega_n / 2 and eigenvalues
+  //   lambda = -zeta_n omega_n +- omega_n sqrt(zeta_n^2 - 1),
+  // two real decay rates omega_n (zeta_n -+ sqrt(zeta_n^2 - 1)) when
+  // zeta_n > 1. zeta1 = 0.1 makes mode 3 overdamped (zeta_3 = 1.75), 1.0 mode
+  // 1 critically damped (a double real eigenvalue), 2.0 every mode
+  // overdamped. Issue 40: these were refused ("did not converge") or
+  // reported with invented MHz modes and negative damping ratios.
+  Linearization undamped(cantilever(16, ""));
+  ModalResult plain;
+  ASSERT_EQ(solveModes(undamped.assembler, 0.0, undamped.q, undamped.lambda, 3, &plain), 0);
+  const double f1 = plain.frequencyHz[0];
+  for (double zeta1 : {0.1, 1.0, 2.0}) {
+    const double eta = zeta1 / (M_PI * f1);
+    char damping[128];
+    std::snprintf(damping, sizeof damping, ", damping_ratio: %.17g, damping_frequency: %.17g", zeta1, f1);
+    Linearization damped(cantilever(16, damping));
+    ModalResult modes;
+    ModalOptions keep;
+    keep.keepVectors = true;
+    ASSERT_EQ(solveModes(damped.assembler, 0.0, damped.q, damped.lambda, 3, &modes, keep), 0);
+    DampedModalOptions options;
+    options.undamped = &modes;
+    DampedModalResult dm;
+    ASSERT_EQ(solveDampedModes(damped.assembler, 0.0, damped.q, damped.lambda, 3, &dm, options), 0);
+    ASSERT_TRUE(dm.classical) << "zeta1 = " << zeta1;
+    ASSERT_EQ(dm.decayRates.size(), 3u);
+    for (int k = 0; k < 3; ++k) {
+      const double omega = std::sqrt(plain.omega2[k]), zeta = eta * omega / 2;
+      const bool critical = std::abs(zeta - 1) < 1e-12;
+      // Exact decay rates and damped frequency.
+      double slow, fast, omegaD = 0;
+      if (zeta < 1) {
+        slow = fast = zeta * omega;
+        omegaD = omega * std::sqrt(1 - zeta * zeta);
+      } else {
+        const double root = std::sqrt(zeta * zeta - 1);
+        fast = omega * (zeta + root);
+        slow = omega * omega / fast; // = omega (zeta - root) without cancellation
+      }
+      // A double root moves by omega sqrt(2 dzeta) for an error dzeta of zeta
+      // (1.7e-12 on two ranks: 1.8e-6): 1e-5 there, 1e-8 elsewhere.
+      const double tol = critical ? 1e-5 : 1e-8;
+      const double eSlow = std::abs(dm.decayRates[k][0] - slow) / slow, eFast = std::abs(dm.decayRates[k][1] - fast) / fast;
+      const double eZeta = std::abs(dm.dampingRatio[k] - zeta) / zeta;
+      PetscPrintf(PETSC_COMM_WORLD,
+                  "  zeta1 %.1f mode %d: zeta %.10f (exact %.10f, rel %.1e), decay rates %.8g %.8g 1/s (exact %.8g %.8g; "
+                  "rel %.1e %.1e), f_d %.6g Hz (exact %.6g), residual %.1e\n",
+                  zeta1, k + 1, dm.dampingRatio[k], zeta, eZeta, dm.decayRates[k][0], dm.decayRates[k][1], slow, fast,
+                  eSlow, eFast, dm.dampedOmega[k] / (2 * M_PI), omegaD / (2 * M_PI), dm.residuals[k]);
+      EXPECT_LT(eZeta, 1e-8) << "zeta1 " << zeta1 << " mode " << k + 1;
+      EXPECT_LT(eSlow, tol) << "zeta1 " << zeta1 << " mode " << k + 1;
+      EXPECT_LT(eFast, tol) << "zeta1 " << zeta1 << " mode " << k + 1;
+      EXPECT_LT(std::abs(dm.omega[k] - omega) / omega, 1e-8) << "zeta1 " << zeta1 << " mode " << k + 1;
+      if (zeta < 1 && !critical) EXPECT_LT(std::abs(dm.dampedOmega[k] - omegaD) / omegaD, 1e-8);
+      // At critical damping omega_d = omega sqrt(1 - zeta^2) moves by
+      // omega sqrt(2 dzeta) for an error dzeta of zeta (6.6e-13 here).
+      else EXPECT_LE(dm.dampedOmega[k], (critical ? 1e-5 : 0.0) * omega) << "overdamped: no oscillation";
+      EXPECT_LT(dm.residuals[k], 1e-8);
+    }
+  }
 }
