@@ -58,6 +58,9 @@ public:
   double payout(double t) const { return payout_.value(t); }
   double damping() const { return c_; }
   bool hasWinch() const { return winch_; }
+  // The first non-finite force met (a segment of zero length, a NaN state):
+  // never taken for slack.
+  std::string fault() const override { return fault_; }
 
 private:
   // evaluate() after the path's geometry g at in.q and, with J, its Hessian lqq.
@@ -69,6 +72,7 @@ private:
   double EA_, L0_, c_;
   TimeFunction payout_;
   bool winch_;
+  mutable std::string fault_;
 };
 
 } // namespace boomdyn

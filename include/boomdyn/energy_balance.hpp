@@ -24,7 +24,11 @@
 // above two floors: the round-off of the energy sums (the strain energy of
 // very short elements, reported by the items) and what the trapezoidal rule
 // may miss of W_in (half the change of the power over each step times h),
-// which dominates while a load rises from nothing and the energies are tiny.
+// which dominates while a load rises from nothing and the energies are tiny;
+// and one absolute floor, 1e-12 of the model's own energy scale
+// M (|g| L + (L/T)^2) (Model::energyScale): without it a model whose
+// energies are all zero (a block at rest at height 0) would be stopped for
+// an excess of 1e-34 J, 1e31 times the nothing it involves.
 #pragma once
 
 #include "boomdyn/work_item.hpp"
@@ -36,7 +40,14 @@ namespace boomdyn {
 class EnergyBalance {
 public:
   // tolerance: largest excess as a fraction of the energy involved (0: no check).
-  explicit EnergyBalance(double tolerance) : tolerance_(tolerance) {}
+  // energyScale: the model's own energy (Model::energyScale) [J]; 1e-12 of
+  // it is an absolute floor of the excess (round-off of energies that are
+  // all zero, a block at rest at height 0, is no instability).
+  explicit EnergyBalance(double tolerance, double energyScale = 0.0)
+    : tolerance_(tolerance), absoluteFloor_(kAbsoluteFloor * energyScale)
+  {
+  }
+  static constexpr double kAbsoluteFloor = 1e-12;
   // At every accepted step (and once at the start, h = 0). Returns a
   // non-empty message when energy was created beyond the tolerance.
   // dampingWork: W_diss of the step that reached t (0 at the start).
@@ -49,7 +60,7 @@ public:
   double involved() const { return activity_ + exchanged_ + damped_; }
 
 private:
-  double tolerance_;
+  double tolerance_, absoluteFloor_;
   int steps_ = 0;
   double roundoff_ = 0, quadrature_ = 0;
   double previousImpulseWork_ = 0; // cumulative impulse work at the last update

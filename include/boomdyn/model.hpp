@@ -108,6 +108,17 @@ public:
     int elements = 0, maxElements = 0;
   };
   std::vector<Conditioning> iterationConditioning() const;
+
+  // An energy the model's own data make [J]: M (|g| L + (L / T)^2), with M
+  // the bodies' and point masses' total mass, L the size of the initial
+  // configuration (the span of the bodies' ends, at least the longest body)
+  // and T the run's end time: the potential energy of lifting the model by
+  // its size and the kinetic energy of moving it by its size over the run.
+  // The energy balance takes its round-off floor from it (a model whose
+  // energies are all zero has no other scale). 0 for a model without mass.
+  double energyScale() const;
+  // The bodies' and point masses' total mass as the scene gives it [kg].
+  double totalMass() const;
   std::vector<std::string> conditioningWarnings() const;
 
 private:

@@ -50,6 +50,7 @@ public:
 
   const Scene &scene() const { return model_.scene_; }
   Vec2 gravity() const { return Vec2(model_.scene_.gravity[0], model_.scene_.gravity[1]); }
+  double totalMass() const { return model_.totalMass(); } // Model::totalMass
   // Throws ModelError for an unknown name (the reader has checked names).
   const Body &body(const std::string &name) const { return *model_.findBody(name); }
   // Initial coordinates of the bodies (undeformed, as placed).

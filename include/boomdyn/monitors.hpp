@@ -30,6 +30,7 @@ class EnergyCheck : public Monitor {
 public:
   // assembler: for the work of the damping forces over each step (models
   // with physical damping only; Assembler::dampingForces).
+  // The absolute floor of the balance: 1e-12 of the model's energy scale (Model::energyScale).
   EnergyCheck(double tolerance, Assembler &assembler);
   PetscErrorCode start(const RunState &s, bool) override;
   PetscErrorCode afterStep(const RunState &s, std::string *failure) override;
@@ -52,7 +53,8 @@ private:
 
 class ResultsOutput : public Monitor {
 public:
-  // stateInterval: simulated time between state snapshots (0: the end only).
+  // stateInterval: simulated time between state snapshots (static runs: of
+  // the load factor; 0: the first and the last step only).
   ResultsOutput(Simulation &sim, const std::string &path, bool overwrite, const RunInfo &info, double stateInterval);
   PetscErrorCode setUp() override;
   PetscErrorCode start(const RunState &s, bool restarted) override;
@@ -75,6 +77,8 @@ private:
   bool overwrite_;
   RunInfo info_;
   double stateInterval_, nextState_;
+  // Static runs: the load factor of the last converged increment and of the last state snapshot (-1: none).
+  double loadFactor_ = 0, stateWrittenAt_ = -1;
   RopeTensions ropes_;
   DesignNumbers design_; // peak rope tensions, root moments, contact forces (dynamic runs)
   std::vector<SensorReading> readings_;

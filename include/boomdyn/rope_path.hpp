@@ -30,6 +30,13 @@ public:
   int numCoordinates() const { return n_; }
   // Spanned length l(q).
   double length(const double *q) const;
+  // The lengths l_j of the segments at q, first to last. A segment of zero
+  // length has no direction (u_j = d_j / l_j): the rope types refuse one
+  // at t = 0 (shortSegment()).
+  std::vector<double> segmentLengths(const double *q) const;
+  // The first segment shorter than 1e-9 of the spanned length (or of zero
+  // length, or not finite) at q, or -1: its points are j and j + 1.
+  int shortSegment(const double *q) const;
   // The path at q: per segment j (P_j to P_{j+1}) its length l_j, d_jq =
   // d(r_j - r_{j+1})/dq and (I - u_j u_j^T)/l_j; the total l and l_q.
   struct Geometry {

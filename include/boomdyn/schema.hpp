@@ -6,6 +6,7 @@
 // Nothing here knows YAML, so physics types do not depend on io.
 #pragma once
 
+#include <limits>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -49,6 +50,10 @@ struct KeySchema {
   Limit limit = Limit::None;
   int minInt = 0, maxInt = 0; // Integer: allowed range; MapList: at most maxInt items (0: any number)
   std::string tooLarge;       // Integer, MapList: why the upper limit exists ("mesh too large"), for the message
+  // Number: the largest plausible value (infinite: none) and why, for the
+  // message and the docs ("a steel bar of 5 m^2").
+  double maxNumber = std::numeric_limits<double>::infinity();
+  std::string maxReason;
   // Optional keys: the value used when the key is absent (Number only;
   // hasDefault false: the key stays absent and the builder derives it).
   bool hasDefault = false;
@@ -66,6 +71,10 @@ struct KeySchema {
   KeySchema nonNegative() const { return with([](KeySchema &k) { k.limit = Limit::NonNegative; }); }
   KeySchema between(int lo, int hi) const { return with([&](KeySchema &k) { k.minInt = lo, k.maxInt = hi; }); }
   KeySchema tooLargeMeans(std::string why) const { return with([&](KeySchema &k) { k.tooLarge = why; }); }
+  KeySchema atMost(double most, std::string why) const
+  {
+    return with([&](KeySchema &k) { k.maxNumber = most, k.maxReason = why; });
+  }
   KeySchema byDefault(double value, std::string text = "") const
   {
     return with([&](KeySchema &k) { k.hasDefault = true, k.defaultNumber = value, k.defaultText = text; });

@@ -47,6 +47,15 @@ public:
   double value(double t) const;
   double rate(double t) const;  // df/dt
   double accel(double t) const; // d2f/dt2
+  // df/dt from the left: the rate of the segment that ends at t (rate() is
+  // the right derivative). Differs from rate() only where the rate jumps
+  // (velocityBreakpoints()): the power of a load or winch over a step that
+  // lands on such a time is that of the step's own segment.
+  double rateBefore(double t) const;
+  // The smallest and largest value over [ta, tb] (ta <= tb), in closed form
+  // for every kind: ramps, smooth steps and accel-limited moves are
+  // monotone, tables take their extremes at knots, a sine at its crests.
+  void bounds(double ta, double tb, double *lo, double *hi) const;
   Kind kind() const { return kind_; }
   std::string describe() const;
 

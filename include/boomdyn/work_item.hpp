@@ -69,6 +69,12 @@ struct EnergyParts {
   // Rate at which the explicit time dependence of loads and driven
   // constraints feeds energy in (W): dE/dt = inputPower - dissipation.
   double inputPower = 0;
+  // The input power just before t less inputPower (the right limit), where
+  // the rate of a load or winch jumps at t (a ramp's end): the step that
+  // lands on t takes its power at its end from its own segment, so that
+  // the quadrature of a 1 ms haul is not the 0 of the rate after it.
+  // Zero elsewhere.
+  double inputPowerJump = 0;
   // Power dissipated by material damping (W, >= 0): edot . fd of the
   // Kelvin-Voigt forces (docs/model.md §1.1).
   double dissipation = 0;
@@ -154,6 +160,10 @@ public:
     energy(ctx, in, e);
     return dampingForce(in, f);
   }
+  // A fault the item met while it was evaluated on this rank (a force that
+  // is not finite), for the message of a run that fails; empty if none.
+  // The item makes its residual NaN then, so that no step is accepted.
+  virtual std::string fault() const { return {}; }
   // Contribution to a characteristic mass / stiffness (diagonal sums) used to scale multipliers.
   virtual void scales(const ItemValues &, double &massDiag, double &stiffDiag, int &count) const
   {

@@ -26,13 +26,17 @@ std::string EnergyBalance::update(double t, double h, const EnergyParts &e, doub
   work_ += e.impulseWork - previousImpulseWork_;
   exchanged_ += std::abs(e.impulseWork - previousImpulseWork_);
   previousImpulseWork_ = e.impulseWork;
-  // Trapezoidal rule over the step: second order, like the integrator.
-  work_ += 0.5 * (previousPower_ + e.inputPower) * h;
+  // Trapezoidal rule over the step: second order, like the integrator. At
+  // its end the power of the step's own segment of the loads' and winches'
+  // rates (the left limit, where a rate jumps at a breakpoint): a haul
+  // that ends on the step's end did its work inside the step.
+  const double powerAtEnd = e.inputPower + e.inputPowerJump;
+  work_ += 0.5 * (previousPower_ + powerAtEnd) * h;
   // What the trapezoidal rule may miss over the step (its distance from
   // either rectangle rule): large while a load ramps up from nothing,
   // negligible against the work later.
-  quadrature_ += 0.5 * std::abs(e.inputPower - previousPower_) * h;
-  exchanged_ += 0.5 * (std::abs(previousPower_) + std::abs(e.inputPower)) * h;
+  quadrature_ += 0.5 * std::abs(powerAtEnd - previousPower_) * h;
+  exchanged_ += 0.5 * (std::abs(previousPower_) + std::abs(powerAtEnd)) * h;
   previousPower_ = e.inputPower;
   // The damping work of the step as the discrete forces did it on the
   // discrete motion (EnergyCheck::afterStep), not a quadrature of the
@@ -47,7 +51,7 @@ std::string EnergyBalance::update(double t, double h, const EnergyParts &e, doub
   // with a margin: on a 10^5-element boom whose load has just started, the
   // energies themselves are at that level.
   roundoff_ = std::max(roundoff_, e.roundoff);
-  const double floor = 1e-9 * (std::abs(total) + std::abs(e0_)) + 10.0 * roundoff_ + quadrature_;
+  const double floor = 1e-9 * (std::abs(total) + std::abs(e0_)) + 10.0 * roundoff_ + quadrature_ + absoluteFloor_;
   if (tolerance_ <= 0 || excess_ <= tolerance_ * involved() + floor) return {};
   char text[768];
   std::snprintf(text, sizeof text,

@@ -33,6 +33,31 @@ double RopePath::length(const double *q) const
   return l;
 }
 
+std::vector<double> RopePath::segmentLengths(const double *q) const
+{
+  std::vector<double> lengths;
+  Vec2 previous = Vec2::Zero();
+  for (std::size_t k = 0; k < points_.size(); ++k) {
+    CenterlineSample s;
+    points_[k].body->sample(loc_[k], points_[k].s, q + offset_[k], s);
+    if (k > 0) lengths.push_back((previous - s.r[0]).norm());
+    previous = s.r[0];
+  }
+  return lengths;
+}
+
+int RopePath::shortSegment(const double *q) const
+{
+  const std::vector<double> l = segmentLengths(q);
+  double total = 0;
+  for (double lj : l) total += lj;
+  // 1e-9 of the span: the segment's stiffness T (I - u u^T) / l_j would be
+  // 1e9 times that of the rope's other segments, and its direction round-off.
+  for (std::size_t j = 0; j < l.size(); ++j)
+    if (!(l[j] > 1e-9 * total)) return static_cast<int>(j);
+  return -1;
+}
+
 void RopePath::geometry(const double *q, Geometry &g) const
 {
   // Every array is reused from the previous call (same sizes, no heap

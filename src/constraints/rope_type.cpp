@@ -14,14 +14,20 @@ void buildRope(const ComponentSpec &spec, ModelBuilder &b)
   const Rope::Point P{&b.body(spec.text("from")), spec.number("from_at")},
       Q{&b.body(spec.text("pulley")), spec.number("pulley_at")}, R{&b.body(spec.text("to")), spec.number("to_at")};
   double length = spec.numberOr("length", 0.0);
-  if (length <= 0) { // the rope is taut in the initial configuration
-    const Rope probe(spec.name, P, Q, R, 0.0);
-    std::vector<PetscInt> dofs;
-    probe.coordinates(dofs);
-    std::vector<double> vals;
-    for (PetscInt d : dofs) vals.push_back(b.bodyCoordinates()[d]);
-    length = probe.spannedLength(vals.data());
+  const Rope probe(spec.name, P, Q, R, 0.0);
+  std::vector<PetscInt> dofs;
+  probe.coordinates(dofs);
+  std::vector<double> vals;
+  for (PetscInt d : dofs) vals.push_back(b.bodyCoordinates()[d]);
+  // A segment of zero length has no direction: C_q would be NaN.
+  if (const int j = probe.path().shortSegment(vals.data()); j >= 0) {
+    const char *keys[] = {"from_at", "pulley_at", "to_at"};
+    throw ModelError(ModelBuilder::where(spec.mark) + "rope '" + spec.name + "': key '" + keys[j + 1] +
+                     "': the rope's segment from '" + keys[j] + "' to '" + keys[j + 1] +
+                     "' has zero length at t = 0 (" + numberText(probe.path().segmentLengths(vals.data())[j]) +
+                     " m): its direction is undefined; move the point");
   }
+  if (length <= 0) length = probe.spannedLength(vals.data()); // the rope is taut in the initial configuration
   const ConstraintItem &item = b.addConstraint(std::make_shared<Rope>(spec.name, P, Q, R, length), spec.mark);
   // C = L - l1 - l2: a pulling extension rope has a negative multiplier; a
   // positive one is the retraction rope's pull (rope_tensions.hpp).

@@ -13,6 +13,7 @@
 #include "boomdyn/sliding_joint.hpp"
 
 #include <array>
+#include <cmath>
 #include <sstream>
 
 namespace boomdyn {
@@ -201,6 +202,11 @@ bool sameLocation(const CenterlineLocation &a, const CenterlineLocation &b)
          a.begin == b.begin && a.end == b.end;
 }
 
+// A pad whose penetration at the start is at most this (m) is on the edge
+// of contact: round-off of coordinates of size 1e4 m, far below any pad's
+// deflection under load (k_pad = 5e8 N/m: 0.05 N).
+constexpr double kPadEdge = 1e-10;
+
 // Per pad every step: contact force f (N, along the track normal, on the
 // slider), penetration (|d| - g: > 0 in contact, else minus the free play
 // left) and side (+1, -1 in contact, 0 free); lift-off / contact events
@@ -233,13 +239,25 @@ void addPadOutputs(std::shared_ptr<SlidingJoint> joint, const PadContact *pad, M
     return static_cast<double>(state(q, v).side);
   }));
   auto previous = std::make_shared<PadState>();
+  // A pad that starts on the edge of contact (penetration 0 to round-off:
+  // with no clearance, the gap d = 0 belongs to both sides) has no side yet:
+  // the first step decides it, without an event at the start.
+  auto undecided = std::make_shared<bool>(false);
   EventSource source{name, {"lift_off", "contact"}, w.watched, nullptr};
-  source.detect = [state, previous, name, pad](double t, double h, const double *q, const double *v, bool first,
-                                          std::vector<TypeEvent> &out) {
+  source.detect = [state, previous, undecided, name, pad](double t, double h, const double *q, const double *v,
+                                                          bool first, std::vector<TypeEvent> &out) {
     const PadState now = state(q, v);
     const PadState before = *previous;
     *previous = now;
-    if (first || now.side == before.side) return;
+    if (first) {
+      *undecided = std::abs(now.penetration) <= kPadEdge;
+      return;
+    }
+    if (*undecided) { // the first step decides the side
+      *undecided = false;
+      return;
+    }
+    if (now.side == before.side) return;
     // Where the penetration on a side, sigma d - g, crosses zero inside the step (linear).
     const double g = pad->spec().clearance;
     auto crossing = [&](int sigma) {

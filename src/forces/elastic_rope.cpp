@@ -1,7 +1,11 @@
 #include "boomdyn/elastic_rope.hpp"
 
+#include "boomdyn/schema.hpp"
+
 #include <algorithm>
+#include <cmath>
 #include <cstring>
+#include <limits>
 
 namespace boomdyn {
 
@@ -26,7 +30,7 @@ ElasticRope::State ElasticRope::state(double t, const double *q, const double *v
   // Tension only, and only while longer than unstretched: a rope shorter
   // than L0 carries nothing even while it lengthens fast (no damping pull).
   st.taut = st.stretch > 0 && st.force > 0;
-  st.tension = st.taut ? st.force : 0.0;
+  st.tension = st.taut || std::isnan(st.force) ? st.force : 0.0; // a NaN is reported as one, not as slack
   if (st.stretch > 0) {
     const double eps = st.stretch / st.restLength;
     st.winchPower = -(st.tension + 0.5 * EA_ * eps * eps) * st.payoutRate;
@@ -82,6 +86,15 @@ void ElasticRope::evaluateAt(const AssemblyContext &ctx, const ItemValues &in, c
   const Eigen::Map<const Eigen::VectorXd> v(in.v, n);
   const double L0 = restLength(ctx.t), k = EA_ / L0;
   const double rate = lq.dot(v), f = k * (l - L0) + c_ * (rate - payout_.rate(ctx.t));
+  if (!std::isfinite(f)) {
+    // A NaN is not "slack": the residual says so, and the run's failure
+    // names the rope (fault()).
+    if (fault_.empty())
+      fault_ = "elastic_rope '" + name_ + "': its force is not finite at t = " + numberText(ctx.t) +
+               " s (spanned length " + numberText(l) + " m; a segment of zero length has no direction)";
+    for (int i = 0; i < n; ++i) residual[i] = std::numeric_limits<double>::quiet_NaN();
+    return;
+  }
   if (!(l > L0 && f > 0)) return; // slack: no force, no stiffness
   // The active set is that of the current Newton iterate (a semismooth
   // Newton step); a step whose iteration does not converge is cut by the
@@ -105,6 +118,13 @@ void ElasticRope::energy(const AssemblyContext &ctx, const ItemValues &in, Energ
   const double stretchRate = st.rate - st.payoutRate;
   e.dissipation += st.tension * stretchRate - elastic * stretchRate;
   e.inputPower += st.winchPower;
+  // At a jump of the winch's rate (a ramp's ends) the power just before t:
+  // the same rope with the rate of the segment that ends at t.
+  if (const double before = payout_.rateBefore(ctx.t); before != st.payoutRate && st.stretch > 0) {
+    const double f = k * st.stretch + c_ * (st.rate - before), tension = f > 0 ? f : 0.0;
+    const double eps = st.stretch / st.restLength;
+    e.inputPowerJump += -(tension + 0.5 * EA_ * eps * eps) * before - st.winchPower;
+  }
 }
 
 } // namespace boomdyn

@@ -37,19 +37,56 @@ double stretchCrossing(double t, double h, double d0, double r0, double d1, doub
   return t - h + 0.5 * (a + b) * h;
 }
 
+// The plausible range of a rope (docs/scenes.md, elastic_rope): beyond it
+// the numbers describe no rope, and the run would fail far from the cause
+// (a "singular" system, or tens of thousands of step cuts on a spring
+// 1e10 times stiffer than the boom).
+// EA at most 1e12 N (the schema's limit, checked by the reader): a steel
+// bar of about 5 m^2 metallic area; the largest wire ropes have about 1e9 N.
+constexpr double kMaxRopeEA = 1e12;
+// Initial strain (pretension / EA, or (l0 - L0) / L0 with `length`) at most
+// 0.2: beyond the breaking elongation of steel (a few %) and fibre ropes
+// (about 10-20 %); the linear law T = EA eps means nothing there.
+constexpr double kMaxRopeStrain = 0.2;
+
+// The initial strain, from the pretension (relative to EA) or from the
+// length: a check across keys, at the build.
+void checkRopeStrain(const ComponentSpec &spec, double EA, double L0, double spanned)
+{
+  const std::string rope = ModelBuilder::where(spec.mark) + "elastic_rope '" + spec.name + "': ";
+  const double strain = spec.has("length") ? (spanned - L0) / L0 : spec.numberOr("pretension", 0.0) / EA;
+  if (!(strain <= kMaxRopeStrain)) {
+    const std::string key = spec.has("length") ? "length" : "pretension";
+    throw ModelError(rope + "key '" + key + "': the rope starts stretched by " + numberText(strain) +
+                     " of its unstretched length (" +
+                     (spec.has("length") ? "spanned " + numberText(spanned) + " m, length " + numberText(L0) + " m"
+                                         : "pretension " + numberText(spec.number("pretension")) + " N, EA " +
+                                               numberText(EA) + " N") +
+                     "): at most " + numberText(kMaxRopeStrain) +
+                     ", beyond the breaking elongation of steel and fibre ropes");
+  }
+}
+
 void buildElasticRope(const ComponentSpec &spec, ModelBuilder &b)
 {
+  // The points and the keys that place them (for the messages).
   std::vector<RopePath::Point> points{{&b.body(spec.text("from")), spec.number("from_at")}};
+  std::vector<std::string> keys{"from_at"};
   for (const char *pulley : {"pulley", "pulley2"})
-    if (spec.has(pulley)) points.push_back({&b.body(spec.text(pulley)), spec.number(std::string(pulley) + "_at")});
+    if (spec.has(pulley)) {
+      points.push_back({&b.body(spec.text(pulley)), spec.number(std::string(pulley) + "_at")});
+      keys.push_back(std::string(pulley) + "_at");
+    }
   if (spec.has("pulleys")) { // the list form: any number of sheaves, in the order the rope runs over them
     const ComponentSpec &list = spec.map("pulleys");
     for (std::size_t i = 0; list.has(std::to_string(i)); ++i) {
       const ComponentSpec &sheave = list.map(std::to_string(i));
       points.push_back({&b.body(sheave.text("body")), sheave.number("at")});
+      keys.push_back("pulleys[" + std::to_string(i) + "].at");
     }
   }
   points.push_back({&b.body(spec.text("to")), spec.number("to_at")});
+  keys.push_back("to_at");
   RopePath path(points);
   std::vector<PetscInt> dofs;
   path.coordinates(dofs);
@@ -61,18 +98,31 @@ void buildElasticRope(const ComponentSpec &spec, ModelBuilder &b)
   if (!(spanned > 0))
     throw ModelError(ModelBuilder::where(spec.mark) + "elastic_rope '" + spec.name +
                      "': its points coincide at t = 0 (spanned length 0)");
+  // A segment of zero length has no direction: its force would be NaN.
+  if (const int j = path.shortSegment(q0.data()); j >= 0)
+    throw ModelError(ModelBuilder::where(spec.mark) + "elastic_rope '" + spec.name + "': key '" + keys[j + 1] +
+                     "': the rope's segment from '" + keys[j] + "' to '" + keys[j + 1] +
+                     "' has zero length at t = 0 (" +
+                     numberText(path.segmentLengths(q0.data())[j]) + " m of " + numberText(spanned) +
+                     " m): its direction is undefined; move the point or leave the pulley out");
+  checkRopeStrain(spec, EA, L0, spanned);
   // The winch: L0(t) = L0 + dL0(t), and the rope must not be paid in below nothing.
   const TimeFunction payout = spec.has("winch") ? spec.function("winch") : TimeFunction();
   auto rope = std::make_unique<ElasticRope>(spec.name, std::move(path), EA, L0, spec.number("damping"), payout);
   if (rope->hasWinch()) {
-    std::vector<double> knots{0.0};
-    payout.velocityBreakpoints(knots);
-    knots.push_back(payout.endTime());
-    for (double t : knots)
-      if (!(rope->restLength(t) > 0))
-        throw ModelError(ModelBuilder::where(spec.mark) + "elastic_rope '" + spec.name + "': key 'winch': the winch " +
-                         "hauls in more rope than there is (unstretched length " + numberText(rope->restLength(t)) +
-                         " m at t = " + numberText(t) + " s)");
+    // The least rope length over the whole profile: from t = 0 to the run's
+    // end or the profile's own end, whichever is later (a restart may run
+    // on), from the time function's bounds (a sine's troughs, a table's
+    // knots), not only its end points.
+    const Scene &scene = b.scene();
+    const double tEnd = std::max({scene.dynamic.t_end, scene.statics.time, payout.endTime(), 0.0});
+    double least, most;
+    payout.bounds(0.0, tEnd, &least, &most);
+    if (!(L0 + least > 0))
+      throw ModelError(ModelBuilder::where(spec.mark) + "elastic_rope '" + spec.name + "': key 'winch': the winch " +
+                       "hauls in more rope than there is (unstretched length " + numberText(L0) + " m, the winch's " +
+                       "least payout " + numberText(least) + " m over t in [0, " + numberText(tEnd) +
+                       "] s leaves " + numberText(L0 + least) + " m)");
   }
   const ElasticRope *r = rope.get(); // owned by the Model, which also holds the channels and the source
   b.addItem(std::move(rope));
@@ -173,10 +223,16 @@ PhysicsType elasticRopeType()
       bodyKey("to", "body of the rope's far end"),
       atKey("to_at", "to", "material point of the far end"),
       key("EA", ValueKind::Number, "N", Need::Required, "axial stiffness of the rope (metallic area times the rope's "
-                                                       "modulus)").positive(),
-      key("length", ValueKind::Number, "m", Need::Optional, "unstretched length L0").positive().derived(
-          "from the pretension and the initial spanned length l0: L0 = l0 / (1 + pretension/EA)"),
-      key("pretension", ValueKind::Number, "N", Need::Optional, "tension in the initial configuration")
+                                                       "modulus)")
+          .positive()
+          .atMost(kMaxRopeEA, "a steel bar of 5 m^2; the largest wire ropes have about 1e9 N"),
+      key("length", ValueKind::Number, "m", Need::Optional,
+          "unstretched length L0; the initial strain (l0 - L0)/L0 at most 0.2")
+          .positive()
+          .derived("from the pretension and the initial spanned length l0: L0 = l0 / (1 + pretension/EA)"),
+      key("pretension", ValueKind::Number, "N", Need::Optional,
+          "tension in the initial configuration; at most 0.2 EA (an initial strain beyond the breaking elongation of "
+          "steel and fibre ropes is refused)")
           .nonNegative()
           .byDefault(0.0),
       key("damping", ValueKind::Number, "N s/m", Need::Optional,
@@ -185,8 +241,9 @@ PhysicsType elasticRopeType()
           .byDefault(0.0),
       key("winch", ValueKind::TimeFunction, "m", Need::Optional,
           "winch at the first end: the rope length dL0(t) it has paid out since t = 0, so that L0(t) = L0 + dL0(t) "
-          "(hoisting: decreasing; hoisting at speed v from t0: a ramp to -v (t1 - t0) at t1); adds the outputs "
-          "payout (dL0(t)) and winch_power")
+          "(hoisting: decreasing; hoisting at speed v from t0: a ramp to -v (t1 - t0) at t1); L0(t) must stay "
+          "positive over the whole profile up to the run's or the profile's end; adds the outputs payout (dL0(t)) "
+          "and winch_power")
           .derived("none (L0 fixed)"),
   };
   t.schema.rules = {

@@ -23,6 +23,22 @@ void buildGroundContact(const ComponentSpec &spec, ModelBuilder &b)
   const GroundContact *c = contact.get(); // owned by the Model, which also holds the channels and the source
   std::vector<PetscInt> dofs;
   c->coordinates(dofs);
+  // A point that starts inside the ground would be fired out by the spring's
+  // stored energy k d^2 / 2: refused beyond ten times the contact's
+  // deflection under the whole model's weight (a payload placed at its
+  // static penetration is accepted; 1e-9 m of round-off without gravity).
+  {
+    std::vector<double> q0, v0(dofs.size(), 0.0);
+    for (PetscInt d : dofs) q0.push_back(b.bodyCoordinates()[d]);
+    const double gap = c->state(q0.data(), v0.data()).gap, k = spec.number("stiffness");
+    const double allowed = 10.0 * b.totalMass() * b.gravity().norm() / k + 1e-9;
+    if (gap < -allowed)
+      throw ModelError(ModelBuilder::where(spec.mark) + "ground_contact '" + spec.name + "': the point at " +
+                       numberText(spec.number("at")) + " m of body '" + spec.text("body") + "' starts " +
+                       numberText(-gap) + " m below the ground line (key 'level': " + numberText(spec.number("level")) +
+                       " m), more than ten times the contact's deflection under the model's whole weight (" +
+                       numberText(allowed) + " m): place the body on or above the ground");
+  }
   b.addItem(std::move(contact));
   auto channel = [&](const char *quantity, const char *unit, double (*pick)(const GroundContact::State &)) {
     b.addOutputChannel(OutputChannel::ofState("ground_contact", spec.name, quantity, unit, dofs,
@@ -58,7 +74,9 @@ PhysicsType groundContactType()
   t.schema.keys = {
       bodyKey("body", "body whose point touches the ground"),
       atKey("at", "body", "material point that touches the ground"),
-      key("level", ValueKind::Number, "m", Need::Required, "height y_g of the ground line"),
+      key("level", ValueKind::Number, "m", Need::Required,
+          "height y_g of the ground line; the point may start below it by at most ten times the contact's "
+          "deflection under the model's whole weight"),
       key("stiffness", ValueKind::Number, "N/m", Need::Required, "contact stiffness k").positive(),
       key("damping", ValueKind::Number, "N s/m", Need::Optional, "contact damping c").nonNegative().byDefault(0.0),
   };

@@ -41,6 +41,9 @@ void PointForce::energy(const AssemblyContext &ctx, const ItemValues &in, Energy
   e.potential -= (ctx.loadFactor * scale_.value(ctx.t) * force_).dot(p.r[0]);
   // U = -s(t) F . r changes at fixed r when the load does: dU/dt = -s'(t) F . r.
   e.inputPower -= (ctx.loadFactor * scale_.rate(ctx.t) * force_).dot(p.r[0]);
+  // Where the rate jumps (a ramp's ends), the power just before t as well.
+  if (const double before = scale_.rateBefore(ctx.t), after = scale_.rate(ctx.t); before != after)
+    e.inputPowerJump -= (ctx.loadFactor * (before - after) * force_).dot(p.r[0]);
 }
 
 PointMass::PointMass(std::string name, const Body &body, double s, double mass, Vec2 gravity, Release release)

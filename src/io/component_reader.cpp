@@ -189,9 +189,14 @@ void ComponentReader::readValue(const Field &f, const KeySchema &k, const std::s
 {
   fields.emplace(prefix + k.key, f);
   switch (k.kind) {
-  case ValueKind::Number:
-    spec.set(k.key, k.limit == Limit::Positive ? positive(f) : k.limit == Limit::NonNegative ? nonNegative(f) : number(f));
+  case ValueKind::Number: {
+    const double x =
+      k.limit == Limit::Positive ? positive(f) : k.limit == Limit::NonNegative ? nonNegative(f) : number(f);
+    if (x > k.maxNumber)
+      report_.fail(f, "must be <= " + numberText(k.maxNumber) + " (" + k.maxReason + "; got " + f.node.Scalar() + ")");
+    spec.set(k.key, x);
     return;
+  }
   case ValueKind::Angle:
     spec.set(k.key, number(f) * kRadPerDeg);
     return;

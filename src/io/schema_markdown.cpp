@@ -69,9 +69,10 @@ std::string limitText(const KeySchema &k)
 {
   if (k.kind == ValueKind::Integer) return std::to_string(k.minInt) + " to " + std::to_string(k.maxInt);
   if (k.kind == ValueKind::MapList && k.maxInt > 0) return "1 to " + std::to_string(k.maxInt) + " items";
-  if (k.limit == Limit::Positive) return "> 0";
-  if (k.limit == Limit::NonNegative) return ">= 0";
-  return "";
+  std::string text = k.limit == Limit::Positive ? "> 0" : k.limit == Limit::NonNegative ? ">= 0" : "";
+  if (k.maxNumber < std::numeric_limits<double>::infinity())
+    text += (text.empty() ? "<= " : ", <= ") + number(k.maxNumber) + " (" + k.maxReason + ")";
+  return text;
 }
 
 std::string defaultText(const KeySchema &k)

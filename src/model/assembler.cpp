@@ -482,11 +482,13 @@ PetscErrorCode Assembler::diagnostics(const AssemblyContext &ctx, Vec x, EnergyP
   }
   if (forces) forces->f.resize(forces->used);
   PetscCall(endLocal());
-  double sums[6] = {e.kinetic, e.strain, e.potential, e.inputPower, e.roundoff, e.dissipation}, global[6];
-  PetscCallMPI(MPI_Allreduce(sums, global, 6, MPI_DOUBLE, MPI_SUM, comm_));
+  double sums[7] = {e.kinetic, e.strain, e.potential, e.inputPower, e.roundoff, e.dissipation, e.inputPowerJump},
+         global[7];
+  PetscCallMPI(MPI_Allreduce(sums, global, 7, MPI_DOUBLE, MPI_SUM, comm_));
   if (energy) {
     energy->kinetic = global[0], energy->strain = global[1], energy->potential = global[2];
     energy->inputPower = global[3], energy->roundoff = global[4], energy->dissipation = global[5];
+    energy->inputPowerJump = global[6];
   }
   double gviol;
   PetscCallMPI(MPI_Allreduce(&viol, &gviol, 1, MPI_DOUBLE, MPI_MAX, comm_));

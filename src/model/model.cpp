@@ -5,6 +5,7 @@
 #include "boomdyn/model_builder.hpp"
 #include "boomdyn/physics_type.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
@@ -91,6 +92,35 @@ const Body *Model::findBody(const std::string &name) const
   for (const auto &b : bodies_)
     if (b->name() == name) return b.get();
   throw ModelError("no body named '" + name + "'");
+}
+
+double Model::totalMass() const
+{
+  double mass = 0;
+  for (const BodySpec &b : scene_.bodies) mass += b.section.rhoA * b.length;
+  for (const ComponentSpec &m : scene_.masses)
+    if (m.has("mass")) mass += m.number("mass");
+  return mass;
+}
+
+double Model::energyScale() const
+{
+  const double mass = totalMass();
+  double lo[2] = {0, 0}, hi[2] = {0, 0}, longest = 0;
+  bool first = true;
+  for (const BodySpec &b : scene_.bodies) {
+    longest = std::max(longest, b.length);
+    const double end[2] = {b.origin[0] + b.length * std::cos(b.angle), b.origin[1] + b.length * std::sin(b.angle)};
+    for (int i = 0; i < 2; ++i) {
+      const double a = std::min(b.origin[i], end[i]), z = std::max(b.origin[i], end[i]);
+      lo[i] = first ? a : std::min(lo[i], a), hi[i] = first ? z : std::max(hi[i], z);
+    }
+    first = false;
+  }
+  const double L = std::max({std::hypot(hi[0] - lo[0], hi[1] - lo[1]), longest}),
+               g = std::hypot(scene_.gravity[0], scene_.gravity[1]), T = scene_.dynamic.t_end;
+  const double scale = mass * (g * L + (T > 0 ? (L / T) * (L / T) : 0.0));
+  return std::isfinite(scale) ? scale : 0.0;
 }
 
 std::vector<double> Model::initialCoordinates() const

@@ -370,4 +370,56 @@ std::string TimeFunction::describe() const
   return "unknown";
 }
 
+double TimeFunction::rateBefore(double t) const
+{
+  switch (kind_) {
+  case Kind::Ramp:
+    return (t > t0_ && t <= t1_) ? (v1_ - v0_) / (t1_ - t0_) : 0.0;
+  case Kind::Table: {
+    if (t <= times_.front() || t > times_.back())
+      return 0.0;
+    // First knot not less than t: segment [k-1, k] ends at or after t.
+    const auto k = std::lower_bound(times_.begin(), times_.end(), t) - times_.begin();
+    return (values_[k] - values_[k - 1]) / (times_[k] - times_[k - 1]);
+  }
+  case Kind::Sine:
+    return t <= t0_ ? 0.0 : rate(t);
+  case Kind::Constant:
+  case Kind::SmoothStep:
+  case Kind::AccelLimited:
+    return rate(t); // continuous rate
+  }
+  return 0.0;
+}
+
+void TimeFunction::bounds(double ta, double tb, double *lo, double *hi) const
+{
+  // The values at both ends, then the interior extremes of each kind.
+  double a = value(ta), b = value(tb);
+  *lo = std::min(a, b), *hi = std::max(a, b);
+  const auto include = [&](double x) { *lo = std::min(*lo, x), *hi = std::max(*hi, x); };
+  switch (kind_) {
+  case Kind::Constant:
+  case Kind::Ramp:
+  case Kind::SmoothStep:
+  case Kind::AccelLimited:
+    return; // monotone in t
+  case Kind::Table:
+    for (std::size_t k = 0; k < times_.size(); ++k)
+      if (times_[k] > ta && times_[k] < tb) include(values_[k]);
+    return;
+  case Kind::Sine: {
+    // Crests and troughs where 2 pi f (t - t0) + phase = pi/2 + k pi, t > t0.
+    const double w = kTwoPi * frequency_, from = std::max(ta, t0_);
+    if (!(w > 0) || !(tb > from)) return;
+    const double pi = 0.5 * kTwoPi, first = std::ceil((w * (from - t0_) + phase_ - 0.5 * pi) / pi);
+    for (double k = first; k <= first + 1; ++k) { // one crest and one trough, if inside
+      const double t = t0_ + (0.5 * pi + k * pi - phase_) / w;
+      if (t >= from && t <= tb) include(v0_ + (std::fmod(std::abs(k), 2.0) == 0 ? amplitude_ : -amplitude_));
+    }
+    return;
+  }
+  }
+}
+
 } // namespace boomdyn

@@ -213,6 +213,9 @@ std::string Simulation::failureDetails(const std::string &failure)
     if (failure.rfind("Newton failed", 0) == 0 && !ends.empty())
       status += "; contact points at their track ends (booms without overlap, or a slider leaving its track): " + ends;
   }
+  // Items that met a force that is not finite (a rope segment of zero length).
+  for (const auto &item : model_.items())
+    if (const std::string fault = item->fault(); !fault.empty()) status += "; " + fault;
   if (!conditioning_.empty()) status += "; likely cause: " + conditioning_.front();
   return status;
 }

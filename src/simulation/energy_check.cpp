@@ -3,7 +3,7 @@
 namespace boomdyn {
 
 EnergyCheck::EnergyCheck(double tolerance, Assembler &assembler)
-  : balance_(tolerance), assembler_(assembler), damped_(assembler.model().hasPhysicalDamping())
+  : balance_(tolerance, assembler.model().energyScale()), assembler_(assembler), damped_(assembler.model().hasPhysicalDamping())
 {
 }
 

@@ -72,8 +72,17 @@ PetscErrorCode ResultsOutput::afterStep(const RunState &s, std::string *)
 {
   PetscFunctionBeginUser;
   PetscCall(writeStepRow(s));
-  if (!s.dynamic) { // converged load increments: the output channels only
+  if (!s.dynamic) { // converged load increments: the output channels, and state snapshots at the first and
+                     // last increment and every state interval of the load factor (docs/output.md)
     PetscCall(writeOutputs(s));
+    const double slack = 1e-9 * std::max(stateInterval_, 1e-3);
+    if (s.step == 1 || (stateInterval_ > 0 && s.t >= nextState_ - slack) || s.last) {
+      PetscCall(writer_.appendState(s.t, s.q, s.v, s.lambda));
+      stateWrittenAt_ = s.t;
+    }
+    if (stateInterval_ > 0 && s.t >= nextState_ - slack)
+      nextState_ = nextScheduledTime(nextState_, stateInterval_, s.t, slack);
+    loadFactor_ = s.t;
     PetscFunctionReturn(0);
   }
   PetscCall(writeJoints(s));
@@ -95,8 +104,13 @@ PetscErrorCode ResultsOutput::finish(const RunState &s, const RunOutcome &outcom
 {
   PetscFunctionBeginUser;
   // A completed dynamic run wrote its last state with its last step; a
-  // failed or interrupted one ends with the last accepted state.
-  if (!outcome.dynamic || !outcome.completed()) PetscCall(writer_.appendState(outcome.endTime, s.q, s.v, s.lambda));
+  // failed or interrupted one ends with the last accepted state. A static
+  // run ends with its last converged increment (which the solver leaves in
+  // x after a failure), at its load factor (0 before the first), unless
+  // that increment's snapshot is written already.
+  if (outcome.dynamic && !outcome.completed()) PetscCall(writer_.appendState(outcome.endTime, s.q, s.v, s.lambda));
+  if (!outcome.dynamic && stateWrittenAt_ != loadFactor_)
+    PetscCall(writer_.appendState(loadFactor_, s.q, s.v, s.lambda));
   if (outcome.hasEnergyBalance)
     writer_.setEnergyBalance(outcome.inputWork, outcome.energyExcess, outcome.energyInvolved);
   writer_.setSlackRopeSteps(ropes_.slackSteps());

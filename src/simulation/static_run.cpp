@@ -41,7 +41,7 @@ PetscErrorCode Simulation::runStatic(const std::function<bool()> &stop)
     state.t = s.loadFactor;
     state.iterations = s.iterations;
     state.step = ++outcome_.steps;
-    state.last = s.loadFactor >= 1;
+    state.last = s.loadFactor >= 1.0 - 1e-14; // the solver's own end test (ten increments of 0.1 end at 1 - 1e-16)
     state.lambda = statics_->multipliers(); // of this increment (output channels)
     std::string unused; // static runs have no checks that end them
     PetscCall(afterStep(state, &unused));

@@ -11,6 +11,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <random>
 
 using namespace boomdyn;
@@ -176,4 +177,39 @@ TEST(ElasticRope, PathAgreesWithTheRigidRope)
   const double l = path.evaluate(q.data(), lq);
   EXPECT_DOUBLE_EQ(e.C[0], 3.0 - l);
   EXPECT_LT((e.Cq + lq).norm(), 1e-15 * lq.norm());
+}
+
+// A segment of zero length (a pulley on the rope's end point, here reached
+// at run time) has no direction: the force is NaN. It must not be taken for
+// slack (no force): the residual is NaN, so no step is accepted, the rope
+// names itself in fault() for the run's message, and its tension output is
+// NaN, not 0. Its path reports the segment (RopePath::shortSegment), which
+// the rope types refuse at t = 0.
+TEST(ElasticRope, NaNForceIsAnErrorNamingTheRopeNotSlack)
+{
+  const rope_test::Bodies bodies;
+  const auto &[b1, b2, b3, q0] = bodies;
+  const RopePath path({{&b1, 2.0}, {&b1, 2.0}, {&b3, 0.0}}); // the pulley on the first end's point
+  std::vector<PetscInt> dofs;
+  path.coordinates(dofs);
+  std::vector<double> q;
+  for (PetscInt d : dofs) q.push_back(q0[d]);
+  EXPECT_EQ(path.shortSegment(q.data()), 0);
+  EXPECT_EQ(path.segmentLengths(q.data())[0], 0.0);
+  const ElasticRope rope("hoist", path, 1.2e7, 0.9 * path.length(q.data()), 0.0);
+  EXPECT_TRUE(rope.fault().empty());
+  const std::vector<double> v(q.size(), 0.0);
+  const Residual r = evaluate(rope, q, v, 1.0, 0.0);
+  bool allNaN = true;
+  for (double x : r.r) allNaN = allNaN && std::isnan(x);
+  EXPECT_TRUE(allNaN) << "a NaN force is not slack: the residual says so";
+  EXPECT_NE(rope.fault().find("elastic_rope 'hoist'"), std::string::npos) << rope.fault();
+  EXPECT_NE(rope.fault().find("not finite"), std::string::npos) << rope.fault();
+  EXPECT_TRUE(std::isnan(rope.state(0.0, q.data(), v.data()).tension));
+  // A path whose segments all have length keeps shortSegment at -1.
+  const RopePath good({{&b1, 0.3}, {&b2, 2.0}, {&b3, 0.0}});
+  good.coordinates(dofs);
+  std::vector<double> qg;
+  for (PetscInt d : dofs) qg.push_back(q0[d]);
+  EXPECT_EQ(good.shortSegment(qg.data()), -1);
 }

@@ -250,3 +250,76 @@ TEST(TimeFunction, VelocityBreakpointsAreWhereTheRateJumps)
   ASSERT_EQ(b, (std::vector<double>{0.0, 0.5, 1.0, 1.5}));
   for (double t : b) EXPECT_NE(f.rate(t - 1e-9), f.rate(t)) << t;
 }
+
+namespace {
+
+// The extremes of f over [ta, tb] by dense sampling (2e5 points and both
+// ends): an independent reference for bounds(), which must enclose every
+// sample and lie within the sampling's resolution of the extremes.
+void expectBoundsMatchSampling(const TimeFunction &f, double ta, double tb, const char *what)
+{
+  double lo, hi;
+  f.bounds(ta, tb, &lo, &hi);
+  double sampledLo = f.value(ta), sampledHi = sampledLo, worstSlope = 0;
+  const int n = 200000;
+  for (int k = 0; k <= n; ++k) {
+    const double t = ta + (tb - ta) * k / n;
+    sampledLo = std::min(sampledLo, f.value(t)), sampledHi = std::max(sampledHi, f.value(t));
+    worstSlope = std::max(worstSlope, std::abs(f.rate(t)));
+  }
+  // Between samples an extreme can hide by at most |f'| dt (f' = 0 there: far less).
+  const double resolution = worstSlope * (tb - ta) / n + 1e-12;
+  EXPECT_LE(lo, sampledLo + 1e-12) << what;
+  EXPECT_GE(hi, sampledHi - 1e-12) << what;
+  EXPECT_GE(lo, sampledLo - resolution) << what;
+  EXPECT_LE(hi, sampledHi + resolution) << what;
+}
+
+} // namespace
+
+// bounds(): the least and largest value over an interval, in closed form,
+// against dense sampling, for every kind; the sine and the table have their
+// extremes inside the interval, where the end points do not see them.
+TEST(TimeFunction, BoundsAreTheExtremesOverTheInterval)
+{
+  expectBoundsMatchSampling(TimeFunction::constant(-2.5), 0, 3, "constant");
+  expectBoundsMatchSampling(TimeFunction::ramp(0.2, 1.2, 1.0, -4.0), 0, 3, "ramp");
+  expectBoundsMatchSampling(TimeFunction::ramp(0.2, 1.2, 1.0, -4.0), 0.5, 0.7, "ramp, inside");
+  expectBoundsMatchSampling(TimeFunction::smoothStep(0.1, 0.9, 0.0, 2.0), 0, 1, "smooth step");
+  expectBoundsMatchSampling(TimeFunction::accelLimited(0.1, 0.0, -1.0, 0.5, 2.0, 10.0), 0, 5, "accel-limited");
+  expectBoundsMatchSampling(TimeFunction::table({0, 0.5, 1, 2}, {0, -1.5, 0.3, 0.1}), 0, 2.5, "table");
+  expectBoundsMatchSampling(TimeFunction::table({0, 0.5, 1, 2}, {0, -1.5, 0.3, 0.1}), 0.6, 1.7, "table, inside");
+  expectBoundsMatchSampling(TimeFunction::sine(2.0, 1.0, 0.0, 0.0), 0, 1, "sine, one period");
+  expectBoundsMatchSampling(TimeFunction::sine(2.0, 1.0, 0.3, -0.5, 0.2), 0, 0.6, "sine, late start, part of a period");
+  expectBoundsMatchSampling(TimeFunction::sine(-1.5, 3.0, 1.0, 0.0), 0.1, 0.15, "sine, no crest inside");
+  expectBoundsMatchSampling(TimeFunction::sine(1.0, 50.0, 0.0, 0.0), 0, 100, "sine, 5000 periods");
+  // The sine's trough hauls in 2 m at t = 0.75 s, while both ends are 0.
+  double lo, hi;
+  TimeFunction::sine(2.0, 1.0, 0.0, 0.0).bounds(0, 1, &lo, &hi);
+  EXPECT_DOUBLE_EQ(lo, -2.0);
+  EXPECT_DOUBLE_EQ(hi, 2.0);
+  TimeFunction::table({0, 0.5, 1}, {0, -1.5, 0}).bounds(0, 1, &lo, &hi);
+  EXPECT_EQ(lo, -1.5);
+  EXPECT_EQ(hi, 0.0);
+}
+
+// rateBefore(): the left derivative, against a backward difference, and
+// equal to rate() wherever the rate does not jump.
+TEST(TimeFunction, RateBeforeIsTheLeftDerivative)
+{
+  const TimeFunction ramp = TimeFunction::ramp(0.2, 1.2, 1.0, -4.0), table = TimeFunction::table({0, 0.5, 1}, {0, -1.5, 0}),
+                     sine = TimeFunction::sine(2.0, 1.0, 0.5, 0.0, 0.1);
+  const double h = 1e-7;
+  for (const TimeFunction *f : {&ramp, &table, &sine})
+    for (double t : {0.0, 0.1, 0.2, 0.35, 0.5, 0.8, 1.0, 1.2, 1.5}) {
+      const double backward = (f->value(t) - f->value(t - h)) / h;
+      EXPECT_NEAR(f->rateBefore(t), backward, 1e-5 * (1 + std::abs(backward))) << f->describe() << " at t = " << t;
+    }
+  EXPECT_EQ(ramp.rateBefore(1.2), -5.0); // the ramp's end: the slope of the segment that ends there
+  EXPECT_EQ(ramp.rate(1.2), 0.0);
+  EXPECT_EQ(ramp.rateBefore(0.2), 0.0);
+  EXPECT_EQ(ramp.rate(0.2), -5.0);
+  EXPECT_EQ(ramp.rateBefore(0.7), ramp.rate(0.7));
+  EXPECT_EQ(table.rateBefore(0.5), -3.0);
+  EXPECT_EQ(table.rate(0.5), 3.0);
+}

@@ -459,3 +459,43 @@ output:
   EXPECT_GT(worstPull, 0.5 * pullAtRelease) << "the Kelvin-Voigt pad pulls while the block leaves fast";
   EXPECT_LE(worstPull, 1.001 * pullAtRelease);
 }
+
+TEST(Pads, ZeroClearancePadStartingInContactReportsNoEventAtTheStart)
+{
+  // Issue 40: a beam on two pads without clearance, placed on the track's
+  // centerline (d = 0: in contact, no force), under gravity. The first
+  // step decides the side (the pads hold the beam from below, side -1);
+  // before, the start reported a lift_off from side +1 and a contact on
+  // side -1 at t = 0. With the pads' damping the beam settles (at most
+  // twice the static deflection W / (2 k) = 2.5e-6 m) and never comes back
+  // to d = 0: no event at all, and both pads end on side -1.
+  const std::string text = R"(name: pads-in-contact
+analysis: dynamic
+gravity: [0, -9.81]
+bodies:
+  - {name: rail, type: rigid, length: 2.0, origin: [0, 0], section: {rhoA: 10}}
+  - {name: slider, length: 1.0, elements: 4, origin: [0.5, 0], section: {EA: 1.0e10, EI: 1.0e8, rhoA: 50}}
+constraints:
+  - {type: clamp, body: rail, at: start}
+  - {type: sliding_joint, name: A, body: slider, at: start, track: rail, pad: {stiffness: 1.0e8, clearance: 0, damping: 5.0e4}}
+  - {type: sliding_joint, name: B, body: slider, at: end, track: rail, pad: {stiffness: 1.0e8, clearance: 0, damping: 5.0e4}}
+  - {type: extraction_drive, name: hold, joint: A, displacement: 0}
+dynamic: {t_end: 0.05, dt: 1.0e-3, rho_inf: 0.8}
+)";
+  const Scene scene = parseScene(text, "pads-in-contact.yaml");
+  const DynamicHistory run = runDynamic(scene);
+  ASSERT_TRUE(run.summary.completed) << run.summary.failure;
+  PetscMPIInt rank;
+  MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
+  if (rank != 0) return; // events and outputs live on rank 0
+  for (const TypeEvent &e : run.events)
+    ADD_FAILURE() << "event t = " << e.t << " s pad " << e.component << " " << e.kind << " (side " << e.direction << ")";
+  const Model model(scene);
+  for (std::size_t k = 0; k < model.outputChannels().size(); ++k) {
+    const OutputChannel &c = model.outputChannels()[k];
+    if (c.group == "pad" && c.quantity == "side") EXPECT_EQ(run.outputs.back()[k], -1.0) << "pad " << c.name;
+    if (c.group == "pad" && c.quantity == "penetration")
+      PetscPrintf(PETSC_COMM_SELF, "  pad %s: penetration at the end %.3e m (W / (2 k) = %.3e m)\n", c.name.c_str(),
+                  run.outputs.back()[k], 50.0 * 9.81 / (2 * 1.0e8));
+  }
+}
