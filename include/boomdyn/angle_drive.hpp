@@ -18,6 +18,7 @@ public:
   void evaluate(double t, const double *q, const double *v, const double *w, ConstraintEval &out) const override;
   const char *rowUnit(int) const override { return "rad"; }
   void velocityBreakpoints(std::vector<double> &out) const override { theta_.velocityBreakpoints(out); }
+  void accelerationBreakpoints(std::vector<double> &out) const override { theta_.accelerationBreakpoints(out); }
 
 private:
   std::string name_;

@@ -33,6 +33,8 @@ public:
   virtual bool dependsOnTime() const { return true; }
   // Times at which dC/dt jumps (a drive's velocity kinks), appended to out.
   virtual void velocityBreakpoints(std::vector<double> &out) const { (void)out; }
+  // Times at which only d2C/dt2 jumps (a drive's acceleration jumps), appended to out.
+  virtual void accelerationBreakpoints(std::vector<double> &out) const { (void)out; }
   // Unit of the rows, for messages ("m", "rad", ...).
   virtual const char *rowUnit(int row) const { (void)row; return "m"; }
 };

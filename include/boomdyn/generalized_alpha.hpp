@@ -93,8 +93,16 @@ public:
   Vec positions() const { return q_; }
   Vec velocities() const { return v_; }
   Vec accelerations() const { return qdd_; }
-  // Multipliers (unscaled, SI units) in the last nlambda entries.
-  Vec multipliers() const { return lambda_; }
+  // Multipliers (unscaled, SI units) in the last nlambda entries: the
+  // reported ones (see setConsistentMultipliers).
+  Vec multipliers() const { return consistentMultipliers_ ? reported_ : lambda_; }
+  // -boom_consistent_multipliers (default on): the multipliers reported
+  // after each step are solved from the acceleration-level equations at the
+  // step's (t, q, v, z), not the step's index-3 algorithmic ones, which carry
+  // an alternating error after every jump of a prescribed acceleration and
+  // O(h) errors where a drive's acceleration varies (docs/model.md §4.8).
+  // Set before initialize().
+  void setConsistentMultipliers(bool on) { consistentMultipliers_ = on; }
   // Context for diagnostics at the current state (energy, violation); with
   // rightLimit false, as the step that landed on t_ saw it (before a jump at t_).
   // With `forces`, the damping forces at that state in the same pass
@@ -117,7 +125,10 @@ private:
   PetscErrorCode consistentAccelerations();
   // a_ from qdd_ for the first step of size h after a (re)start (see there).
   PetscErrorCode filterStartAcceleration(double h, double betaP, double gammaP, double sigma);
-  void setAccelerationLevelContext(bool velocityLevel);
+  void setAccelerationLevelContext(NewtonSolver &solver, bool velocityLevel);
+  // reported_ from the acceleration-level equations at (t_, q_, v_) (no-op
+  // without consistent multipliers).
+  PetscErrorCode reportMultipliers();
   template <class Op>
   PetscErrorCode forFirstOrder(Op op);
   // One-pass predictor and corrector of advance() (see there).
@@ -128,12 +139,16 @@ private:
   Assembler &assembler_;
   AlphaParameters params_;
   NewtonSolver newton_;
+  NewtonSolver reportSolver_; // the acceleration-level solve of the reported multipliers (own matrix)
   SliderTracker sliders_;
   double t_ = 0, massScale_ = 1, errorTolerance_ = 0;
   bool hasDrives_ = false; // some constraint depends on time (its power needs the multipliers)
   bool kinkRestart_ = true;
   bool accelerationPredictor_ = true;
   bool filteredStart_ = true;
+  bool consistentMultipliers_ = true;
+  bool reportSolverReady_ = false;
+  PetscInt maxNewton_ = 25;
   // qdd_ holds consistent accelerations of a (re)start that no step has
   // left yet: the next step filters a_ from them for its own h.
   bool startPending_ = false;
@@ -146,6 +161,7 @@ private:
   PetscHandle<Vec> q_, v_, qdd_, a_, lambda_;       // state at t_
   PetscHandle<Vec> x_, qp_, vc_, ac_, zero_;        // work vectors of a step
   PetscHandle<Vec> shift_, impulse_;                // velocity projection
+  PetscHandle<Vec> reported_;                       // reported multipliers (consistent with q_, v_ at t_)
 };
 
 } // namespace boomdyn

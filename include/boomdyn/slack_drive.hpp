@@ -19,6 +19,7 @@ public:
   int numRows() const override { return 1; }
   void coordinates(std::vector<PetscInt> &dofs) const override { dofs.assign(1, slack_); }
   void velocityBreakpoints(std::vector<double> &out) const override { d_.velocityBreakpoints(out); }
+  void accelerationBreakpoints(std::vector<double> &out) const override { d_.accelerationBreakpoints(out); }
   void evaluate(double t, const double *q, const double *v, const double *w, ConstraintEval &out) const override
   {
     out.C.setConstant(1, q[0] - s0_ - d_.value(t));

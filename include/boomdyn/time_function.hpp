@@ -43,6 +43,13 @@ public:
   // projection and consistent accelerations, docs/model.md §4.8). Smooth
   // steps and accel-limited moves have a continuous rate: none.
   void velocityBreakpoints(std::vector<double> &out) const;
+  // Times at which the rate is continuous but f'' jumps (an accel-limited
+  // move without jerk limit: the start and end of each speed change; a
+  // sine that starts with nonzero f''), appended to out. The time stepper
+  // lands on these too and restarts with consistent accelerations
+  // (docs/model.md §4.8); jerk jumps (S-curves, smooth steps) are not
+  // breakpoints.
+  void accelerationBreakpoints(std::vector<double> &out) const;
 
   double value(double t) const;
   double rate(double t) const;  // df/dt
@@ -73,8 +80,8 @@ private:
     double accelTime = 0, jerkTime = 0;            // length of the speed-up phase and of its jerk parts
     double distance = 0;                           // |to - from|
   } move_;
-  // Position, rate and acceleration along the move at time tau after t0.
-  void moveState(double tau, double out[3]) const;
+  // Position, rate and acceleration along the move at time t (from t0 on).
+  void moveState(double t, double out[3]) const;
   // The speed-up phase (0 <= tau <= accelTime): distance, rate, acceleration.
   void speedUp(double tau, double out[3]) const;
   std::vector<double> times_, values_;

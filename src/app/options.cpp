@@ -127,8 +127,9 @@ PetscErrorCode readRunOptions(PetscOptionItems *PetscOptionsObject, AppOptions *
                          "Adaptive steps: largest local position error per step [m] (0: fixed steps)",
                          &o->adaptiveTolerance));
   PetscCall(optionBool(PetscOptionsObject, "-boom_kink_restart",
-                       "Land a step on every velocity kink of a drive and restart there (velocity projection, "
-                       "consistent accelerations); 0: step through kinks (oscillating multipliers)",
+                       "Land a step on every velocity kink and acceleration jump of a drive and restart there "
+                       "(velocity projection at kinks, consistent accelerations); 0: step through them (oscillating "
+                       "multipliers)",
                        &o->kinkRestart));
   PetscCall(optionBool(PetscOptionsObject, "-boom_acceleration_predictor",
                        "Start Newton from q + h v + h^2/2 a whenever that predicted the previous step better than "
@@ -138,6 +139,11 @@ PetscErrorCode readRunOptions(PetscOptionItems *PetscOptionsObject, AppOptions *
                        "Start generalized-alpha (and restart it at kinks) from an algorithmic acceleration without "
                        "the modes the step cannot resolve (0: a = the consistent accelerations)",
                        &o->filteredStart));
+  PetscCall(optionBool(PetscOptionsObject, "-boom_consistent_multipliers",
+                       "Report the multipliers (reactions, drive forces) of each step from the acceleration-level "
+                       "equations at its state (0: the step's own index-3 multipliers, which alternate after a jump "
+                       "of a drive's acceleration)",
+                       &o->consistentMultipliers));
   PetscCall(optionNumber(PetscOptionsObject, "-boom_checkpoint_interval",
                          "Simulated time between checkpoints (0: only when interrupted)", &o->checkpointInterval));
   o->checkpointPath = withoutExtension(o->outputPath, ".h5") + ".chk.h5";

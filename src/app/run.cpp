@@ -101,6 +101,7 @@ PetscErrorCode runScene(const Scene &scene, const AppOptions &opts, int argc, ch
   options.kinkRestart = opts.kinkRestart;
   options.accelerationPredictor = opts.accelerationPredictor;
   options.filteredStart = opts.filteredStart;
+  options.consistentMultipliers = opts.consistentMultipliers;
   options.restartPath = opts.restartPath;
   options.quiet = opts.quiet;
   // A scene that is no mechanism is reported by exception (ModelError).

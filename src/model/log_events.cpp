@@ -16,6 +16,7 @@ PetscErrorCode registerLogEvents()
     PetscCall(PetscLogEventRegister("BoomAssembly", classid, &events.assembly));
     PetscCall(PetscLogEventRegister("BoomStep", classid, &events.step));
     PetscCall(PetscLogEventRegister("BoomStart", classid, &events.start));
+    PetscCall(PetscLogEventRegister("BoomMultipliers", classid, &events.multipliers));
     PetscCall(PetscLogEventRegister("BoomStatic", classid, &events.statics));
     PetscCall(PetscLogEventRegister("BoomEigen", classid, &events.eigen));
     PetscCall(PetscLogEventRegister("BoomOutput", classid, &events.output));

@@ -178,20 +178,24 @@ void TimeFunction::speedUp(double tau, double out[3]) const
   out[2] = r[2];
 }
 
-void TimeFunction::moveState(double tau, double out[3]) const
+// The phases are chosen by comparing t with the same doubles that
+// accelerationBreakpoints() reports (t0 + Ta, t1 - Ta), not tau with Ta:
+// at a breakpoint t_k, (t_k - t0) may round below Ta, and the acceleration
+// would then be the left limit where the restart there needs the right one.
+void TimeFunction::moveState(double t, double out[3]) const
 {
   const Move &m = move_;
-  const double total = t1_ - t0_;
-  if (tau <= 0 || m.distance == 0) {
+  const double tau = t - t0_;
+  if (t < t0_ || m.distance == 0) { // at t0 the speed-up's right limit (f'' = accel without a jerk limit)
     out[0] = out[1] = out[2] = 0;
-  } else if (tau >= total) {
+  } else if (t >= t1_) {
     out[0] = m.distance, out[1] = out[2] = 0;
-  } else if (tau < m.accelTime) {
-    speedUp(tau, out);
-  } else if (tau < total - m.accelTime) { // right limits at the phase changes, like ramp and table
+  } else if (t < t0_ + m.accelTime) {
+    speedUp(std::min(tau, m.accelTime), out); // the differences may round past the phase's end
+  } else if (t < t1_ - m.accelTime) { // right limits at the phase changes, like ramp and table
     out[0] = 0.5 * m.peakSpeed * m.accelTime + m.peakSpeed * (tau - m.accelTime), out[1] = m.peakSpeed, out[2] = 0;
   } else { // slowing down: the speed-up run backwards from the end
-    speedUp(total - tau, out);
+    speedUp(std::min(t1_ - t, m.accelTime), out);
     out[0] = m.distance - out[0], out[2] = -out[2];
   }
 }
@@ -236,7 +240,7 @@ double TimeFunction::value(double t) const
   }
   case Kind::AccelLimited: {
     double x[3];
-    moveState(t - t0_, x);
+    moveState(t, x);
     return v0_ + amplitude_ * x[0];
   }
   }
@@ -270,6 +274,28 @@ void TimeFunction::velocityBreakpoints(std::vector<double> &out) const
   }
 }
 
+void TimeFunction::accelerationBreakpoints(std::vector<double> &out) const
+{
+  switch (kind_) {
+  case Kind::AccelLimited:
+    // Unlimited jerk: f'' jumps to +-accel at the start and the end of each
+    // speed change (a jerk-limited move has a continuous f'': none).
+    if (move_.distance == 0 || move_.jerk > 0) return;
+    out.insert(out.end(), {t0_, t0_ + move_.accelTime});
+    if (t1_ - move_.accelTime > t0_ + move_.accelTime) out.push_back(t1_ - move_.accelTime); // cruise in between
+    out.push_back(t1_);
+    return;
+  case Kind::Sine:
+    if (accel(t0_) != 0.0) out.push_back(t0_); // starts with -A w^2 sin(phase) after f'' = 0 before t0
+    return;
+  case Kind::Constant:
+  case Kind::Ramp:
+  case Kind::Table:
+  case Kind::SmoothStep:
+    return;
+  }
+}
+
 double TimeFunction::rate(double t) const
 {
   switch (kind_) {
@@ -297,7 +323,7 @@ double TimeFunction::rate(double t) const
   }
   case Kind::AccelLimited: {
     double x[3];
-    moveState(t - t0_, x);
+    moveState(t, x);
     return amplitude_ * x[1];
   }
   }
@@ -325,7 +351,7 @@ double TimeFunction::accel(double t) const
   }
   case Kind::AccelLimited: {
     double x[3];
-    moveState(t - t0_, x);
+    moveState(t, x);
     return amplitude_ * x[2];
   }
   }

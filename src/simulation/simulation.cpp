@@ -35,6 +35,7 @@ PetscErrorCode Simulation::setUp()
     integrator_->setKinkRestart(options_.kinkRestart);
     integrator_->setAccelerationPredictor(options_.accelerationPredictor);
     integrator_->setFilteredStart(options_.filteredStart);
+    integrator_->setConsistentMultipliers(options_.consistentMultipliers);
     auto energy = std::make_unique<EnergyCheck>(options_.energyTolerance, assembler_);
     energy_ = energy.get();
     monitors_.push_back(std::move(energy));

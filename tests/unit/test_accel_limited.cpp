@@ -11,6 +11,7 @@
 #include <cmath>
 #include <random>
 #include <stdexcept>
+#include <vector>
 
 using boomdyn::TimeFunction;
 
@@ -111,4 +112,47 @@ TEST(AccelLimited, InvalidParametersThrow)
   EXPECT_THROW(TimeFunction::accelLimited(0, 0, 1, 1.0, -1.0), std::invalid_argument);
   EXPECT_THROW(TimeFunction::accelLimited(0, 0, 1, 1.0, 1.0, -1.0), std::invalid_argument);
   EXPECT_THROW(TimeFunction::accelLimited(0, 0, INFINITY, 1.0, 1.0), std::invalid_argument);
+}
+
+// Acceleration breakpoints (docs/model.md §1.6): where f'' jumps and f' does
+// not. The trapezoid above: t0, the end of the speed-up, the start of the
+// slow-down, the end; the triangle: three (no cruise); an S-curve and a
+// smooth step: none; a sine that starts with f'' != 0: its t0. At each
+// breakpoint accel() is the right limit even where (t_k - t0) rounds below
+// the phase length (t0 = 0.7, phase 0.2: 0.7 + 0.2 - 0.7 < 0.2).
+TEST(AccelLimited, AccelerationBreakpointsAndRightLimits)
+{
+  std::vector<double> b;
+  TimeFunction::accelLimited(0.5, 1.0, 2.0, 0.5, 1.0).accelerationBreakpoints(b);
+  ASSERT_EQ(b.size(), 4u);
+  EXPECT_DOUBLE_EQ(b[0], 0.5);
+  EXPECT_DOUBLE_EQ(b[1], 1.0);
+  EXPECT_DOUBLE_EQ(b[2], 2.5);
+  EXPECT_DOUBLE_EQ(b[3], 3.0);
+  b.clear();
+  const TimeFunction triangle = TimeFunction::accelLimited(0.0, 0.0, 0.25, 1.0, 1.0); // peak speed 0.5 at 0.5 s
+  triangle.accelerationBreakpoints(b);
+  ASSERT_EQ(b.size(), 3u);
+  EXPECT_NEAR(b[1], 0.5, 1e-14);
+  EXPECT_EQ(triangle.accel(b[1]), -1.0) << "right limit at the turn";
+  b.clear();
+  TimeFunction::accelLimited(0.0, 0.0, 1.0, 0.5, 1.0, 4.0).accelerationBreakpoints(b);
+  TimeFunction::smoothStep(0.0, 1.0, 0.0, 1.0).accelerationBreakpoints(b);
+  TimeFunction::sine(1.0, 2.0, 0.0, 0.0, 0.3).accelerationBreakpoints(b); // f''(t0) = 0
+  EXPECT_TRUE(b.empty());
+  TimeFunction::sine(1.0, 2.0, M_PI / 2, 0.0, 0.3).accelerationBreakpoints(b);
+  ASSERT_EQ(b.size(), 1u);
+  EXPECT_DOUBLE_EQ(b[0], 0.3);
+  b.clear();
+  // Right limits where the subtraction rounds down: speed-up of 0.2 s from t0 = 0.7.
+  const TimeFunction f = TimeFunction::accelLimited(0.7, 0.0, 1.0, 0.2, 1.0);
+  f.accelerationBreakpoints(b);
+  ASSERT_EQ(b.size(), 4u);
+  ASSERT_LT(b[1] - 0.7, 0.2) << "the case this checks: (t0 + Ta) - t0 rounds below Ta";
+  EXPECT_EQ(f.accel(b[0]), 1.0);
+  EXPECT_EQ(f.accel(b[1]), 0.0);
+  EXPECT_EQ(f.accel(b[2]), -1.0);
+  EXPECT_EQ(f.accel(b[3]), 0.0);
+  EXPECT_EQ(f.accel(std::nextafter(b[1], 0.0)), 1.0);
+  EXPECT_EQ(f.accel(std::nextafter(b[2], 0.0)), 0.0);
 }
