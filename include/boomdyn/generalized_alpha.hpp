@@ -146,7 +146,7 @@ private:
   bool kinkRestart_ = true;
   bool accelerationPredictor_ = true;
   bool filteredStart_ = true;
-  bool consistentMultipliers_ = true;
+  bool consistentMultipliers_ = false;
   bool reportSolverReady_ = false;
   PetscInt maxNewton_ = 25;
   // qdd_ holds consistent accelerations of a (re)start that no step has

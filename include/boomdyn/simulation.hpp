@@ -38,7 +38,7 @@ struct SimulationOptions {
   bool kinkRestart = true;        // land on drives' velocity kinks and restart there (docs/model.md §4.8)
   bool accelerationPredictor = true; // Newton's start from q + h v + h^2/2 a when that predicted better (§4.2)
   bool filteredStart = true; // the first step's a without the modes it cannot resolve (§4.3)
-  bool consistentMultipliers = true; // report multipliers from the acceleration-level equations (§4.8)
+  bool consistentMultipliers = false; // report multipliers from the acceleration-level equations (§4.8)
   std::string restartPath;        // continue a dynamic run from this checkpoint
   bool modal = true;              // run the scene's modal analysis (modal: block)
   bool quiet = false;             // no status lines (warnings and events are printed anyway)

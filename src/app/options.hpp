@@ -26,7 +26,7 @@ struct AppOptions {
   bool kinkRestart = true;       // -boom_kink_restart (restart at drives' velocity kinks)
   bool accelerationPredictor = true; // -boom_acceleration_predictor (Newton's start from h^2/2 a_n when it helps)
   bool filteredStart = true; // -boom_filtered_start (the first step's a without the unresolved modes)
-  bool consistentMultipliers = true; // -boom_consistent_multipliers (reported multipliers from the acceleration level)
+  bool consistentMultipliers = false; // -boom_consistent_multipliers (reported multipliers from the acceleration level)
   double checkpointInterval = 0; // -boom_checkpoint_interval (s of simulated time; 0: only when interrupted)
   std::string checkpointPath;    // -boom_checkpoint (default: output stem + ".chk.h5")
   std::string restartPath;       // -boom_restart: continue a dynamic run from this checkpoint
