@@ -166,6 +166,12 @@ PetscErrorCode TSSetUp_BoomAlpha(TS ts)
              ((PetscObject)adapt)->type_name, TSBOOMALPHA, TSADAPTBOOMALPHA);
   PetscCheck(ours || !(runOf(ts)->integrator->errorTolerance() > 0), comm, PETSC_ERR_USER_INPUT,
              "-boom_adaptive_tol needs -ts_adapt_type %s, not %s", TSADAPTBOOMALPHA, ((PetscObject)adapt)->type_name);
+  // PETSc accepts a factor of exactly 1; a step that Newton cannot solve would
+  // then be retried at the same h forever, never reaching dt_min.
+  PetscCheck(adapt->scale_solve_failed < 1, comm, PETSC_ERR_USER_INPUT,
+             "-ts_adapt_scale_solve_failed %g must be less than 1: a step that Newton cannot solve is retried with h "
+             "times this factor until it converges or falls below dt_min, and at 1 it never shrinks",
+             (double)adapt->scale_solve_failed);
   PetscFunctionReturn(0);
 }
 
