@@ -22,6 +22,18 @@ void fail(TS ts, TSConvergedReason reason, const std::string &message)
   runOf(ts)->failure = message;
 }
 
+// Before another attempt of a rejected step: a stop request (SIGINT, SIGTERM)
+// ends the run now, at the last accepted step, rather than after all the
+// cuts down to dt_min.
+bool stopBeforeRetry(TS ts)
+{
+  BoomAlphaRun *run = runOf(ts);
+  if (!run->stop || !run->stop()) return false;
+  run->interrupted = true;
+  ts->reason = TS_CONVERGED_USER;
+  return true;
+}
+
 PetscErrorCode stepBody(TS ts)
 {
   BoomAlphaRun *run = runOf(ts);
@@ -86,6 +98,7 @@ PetscErrorCode stepBody(TS ts)
         fail(ts, TS_DIVERGED_STEP_REJECTED, os.str());
         break;
       }
+      if (stopBeforeRetry(ts)) break;
       ts->time_step = st.h;
       continue;
     }
@@ -119,6 +132,7 @@ PetscErrorCode stepBody(TS ts)
         fail(ts, TS_DIVERGED_STEP_REJECTED, os.str());
         break;
       }
+      if (stopBeforeRetry(ts)) break;
       ts->time_step = st.h;
       continue;
     }
