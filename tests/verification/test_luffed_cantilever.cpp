@@ -7,7 +7,8 @@
 // piecewise linear, so every mode has a closed-form response on each
 // segment): an independent solution of the semi-discrete equations, without
 // the time integrator. It neglects the centrifugal and geometric terms of
-// order thetadot^2 / omega_1^2 and (w/L)^2, both below 1e-5 here.
+// order thetadot^2 / omega_1^2 (1.2e-4) and (w/L)^2: the runs reach its
+// error, 0.25 N m = 4.4e-5 of the peak moment, at h <= 0.125 ms.
 #include "support.hpp"
 
 #include <Eigen/Dense>
@@ -218,12 +219,12 @@ double momentDifferenceOnCoarseGrid(const LuffRun &a, const LuffRun &b)
 //    estimate, 4/3 max |M_h - M_{h/2}| (Richardson for order 2), with a
 //    margin of 1.5 for the estimate's own error;
 //  - observed order of the max-norm errors of the moment and of the tip
-//    deflection >= 1.8 on both halvings (measured 2.0-2.1);
+//    deflection >= 1.8 on both halvings (measured 2.01-2.28);
 //  - no alternation: the step-to-step alternating part of the moment error
 //    (its second difference / 4) below 5 % of the error itself (measured
-//    2.2 % at 1 ms, where it is the h^2 second difference of a smooth
-//    error, and falling 13-fold to 0.5 ms; index-3 ringing, as in
-//    DriveReactions.*, would be of the size of the error or larger), and
+//    1.2-1.3 % at 1 ms and 0.4-0.7 % at 0.5 ms: the h^2 second difference
+//    of a smooth error; index-3 ringing, as in DriveReactions.*, would be
+//    of the size of the error or larger), and
 //    the moment has the reference's sign wherever |M_ref| exceeds the error;
 //  - the two kinds of multipliers within 1e-4 of the peak of each other.
 TEST(LuffedCantilever, ClampMomentConvergesToTheModalSolutionAtSecondOrder)
