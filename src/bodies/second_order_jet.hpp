@@ -1,0 +1,149 @@
+// Forward-mode automatic differentiation to second order: a value with its
+// gradient and Hessian with respect to N independent variables. The spatial
+// beam element (docs/model.md §1.7) forms its strains from the 14 element
+// coordinates through normalizations, smallest rotations and an angle; its
+// internal force and tangent need each strain's gradient and Hessian, which
+// this type carries through the same expressions exactly (no truncation
+// error, unlike finite differences; no hand-derived chain rules to get wrong).
+// Cost: a product updates N(N+1) Hessian entries, so it is meant for small N
+// (one element's coordinates), not for a whole model.
+#pragma once
+
+#include <Eigen/Dense>
+
+#include <cmath>
+
+namespace boomdyn::jet {
+
+template <int N>
+struct Jet2 {
+  using Grad = Eigen::Matrix<double, N, 1>;
+  using Hess = Eigen::Matrix<double, N, N>;
+  double v = 0;
+  Grad g = Grad::Zero();
+  Hess h = Hess::Zero();
+
+  Jet2() = default;
+  explicit Jet2(double value) : v(value) {}
+  // Independent variable number i.
+  static Jet2 variable(double value, int i)
+  {
+    Jet2 a(value);
+    a.g[i] = 1.0;
+    return a;
+  }
+  // A quantity linear in the variables: value and constant gradient.
+  static Jet2 linear(double value, const Grad &gradient)
+  {
+    Jet2 a(value);
+    a.g = gradient;
+    return a;
+  }
+
+  Jet2 &operator+=(const Jet2 &b)
+  {
+    v += b.v, g += b.g, h += b.h;
+    return *this;
+  }
+  Jet2 &operator-=(const Jet2 &b)
+  {
+    v -= b.v, g -= b.g, h -= b.h;
+    return *this;
+  }
+  Jet2 &operator*=(double s)
+  {
+    v *= s, g *= s, h *= s;
+    return *this;
+  }
+};
+
+template <int N> inline Jet2<N> operator+(Jet2<N> a, const Jet2<N> &b) { return a += b; }
+template <int N> inline Jet2<N> operator-(Jet2<N> a, const Jet2<N> &b) { return a -= b; }
+template <int N> inline Jet2<N> operator-(Jet2<N> a) { return a *= -1.0; }
+template <int N> inline Jet2<N> operator*(Jet2<N> a, double s) { return a *= s; }
+template <int N> inline Jet2<N> operator*(double s, Jet2<N> a) { return a *= s; }
+template <int N> inline Jet2<N> operator+(Jet2<N> a, double s)
+{
+  a.v += s;
+  return a;
+}
+template <int N> inline Jet2<N> operator+(double s, Jet2<N> a) { return a + s; }
+template <int N> inline Jet2<N> operator-(Jet2<N> a, double s)
+{
+  a.v -= s;
+  return a;
+}
+template <int N> inline Jet2<N> operator-(double s, Jet2<N> a)
+{
+  a *= -1.0;
+  a.v += s;
+  return a;
+}
+
+template <int N> inline Jet2<N> operator*(const Jet2<N> &a, const Jet2<N> &b)
+{
+  Jet2<N> c;
+  c.v = a.v * b.v;
+  c.g = a.v * b.g + b.v * a.g;
+  c.h.noalias() = a.v * b.h + b.v * a.h;
+  c.h.noalias() += a.g * b.g.transpose();
+  c.h.noalias() += b.g * a.g.transpose();
+  return c;
+}
+
+// f(a) with f' = d1, f'' = d2 at a.v.
+template <int N> inline Jet2<N> chain(const Jet2<N> &a, double f, double d1, double d2)
+{
+  Jet2<N> c;
+  c.v = f;
+  c.g = d1 * a.g;
+  c.h.noalias() = d1 * a.h;
+  c.h.noalias() += d2 * a.g * a.g.transpose();
+  return c;
+}
+
+template <int N> inline Jet2<N> inverse(const Jet2<N> &a)
+{
+  const double i = 1.0 / a.v;
+  return chain(a, i, -i * i, 2.0 * i * i * i);
+}
+template <int N> inline Jet2<N> operator/(const Jet2<N> &a, const Jet2<N> &b) { return a * inverse(b); }
+template <int N> inline Jet2<N> operator/(Jet2<N> a, double s) { return a *= 1.0 / s; }
+template <int N> inline Jet2<N> operator/(double s, const Jet2<N> &a) { return s * inverse(a); }
+
+template <int N> inline Jet2<N> sqrt(const Jet2<N> &a)
+{
+  const double s = std::sqrt(a.v);
+  return chain(a, s, 0.5 / s, -0.25 / (s * a.v));
+}
+template <int N> inline Jet2<N> sin(const Jet2<N> &a)
+{
+  const double s = std::sin(a.v);
+  return chain(a, s, std::cos(a.v), -s);
+}
+template <int N> inline Jet2<N> cos(const Jet2<N> &a)
+{
+  const double c = std::cos(a.v);
+  return chain(a, c, -std::sin(a.v), -c);
+}
+
+// atan2(y, x) with its first and second partial derivatives.
+template <int N> inline Jet2<N> atan2(const Jet2<N> &y, const Jet2<N> &x)
+{
+  const double r2 = x.v * x.v + y.v * y.v, r4 = r2 * r2;
+  const double fy = x.v / r2, fx = -y.v / r2;
+  const double fyy = -2.0 * x.v * y.v / r4, fxx = -fyy, fxy = (y.v * y.v - x.v * x.v) / r4;
+  Jet2<N> c;
+  c.v = std::atan2(y.v, x.v);
+  c.g = fy * y.g + fx * x.g;
+  c.h.noalias() = fy * y.h + fx * x.h;
+  c.h.noalias() += fyy * y.g * y.g.transpose() + fxx * x.g * x.g.transpose();
+  c.h.noalias() += fxy * (y.g * x.g.transpose() + x.g * y.g.transpose());
+  return c;
+}
+
+// Plain doubles take the same templated expressions (energy, strains for output).
+inline double value(double a) { return a; }
+template <int N> inline double value(const Jet2<N> &a) { return a.v; }
+
+} // namespace boomdyn::jet
