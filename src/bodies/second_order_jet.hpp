@@ -1,5 +1,6 @@
-// Forward-mode automatic differentiation to second order: a value with its
-// gradient and Hessian with respect to N independent variables. The spatial
+// Forward-mode automatic differentiation to second order (Jet2: a value with
+// its gradient and Hessian with respect to N independent variables) and to
+// first order (Jet1: value and gradient). The spatial
 // beam element (docs/model.md §1.7) forms its strains from the 14 element
 // coordinates through normalizations, smallest rotations and an angle; its
 // internal force and tangent need each strain's gradient and Hessian, which
@@ -145,5 +146,109 @@ template <int N> inline Jet2<N> atan2(const Jet2<N> &y, const Jet2<N> &x)
 // Plain doubles take the same templated expressions (energy, strains for output).
 inline double value(double a) { return a; }
 template <int N> inline double value(const Jet2<N> &a) { return a.v; }
+
+} // namespace boomdyn::jet
+
+namespace boomdyn::jet {
+
+// First order only (value and gradient): the residual's path, where the
+// Hessians are not needed; about N/2 times cheaper per operation than Jet2.
+template <int N>
+struct Jet1 {
+  using Grad = Eigen::Matrix<double, N, 1>;
+  double v = 0;
+  Grad g = Grad::Zero();
+
+  Jet1() = default;
+  explicit Jet1(double value) : v(value) {}
+  static Jet1 variable(double value, int i)
+  {
+    Jet1 a(value);
+    a.g[i] = 1.0;
+    return a;
+  }
+  static Jet1 linear(double value, const Grad &gradient)
+  {
+    Jet1 a(value);
+    a.g = gradient;
+    return a;
+  }
+  Jet1 &operator+=(const Jet1 &b)
+  {
+    v += b.v, g += b.g;
+    return *this;
+  }
+  Jet1 &operator-=(const Jet1 &b)
+  {
+    v -= b.v, g -= b.g;
+    return *this;
+  }
+  Jet1 &operator*=(double s)
+  {
+    v *= s, g *= s;
+    return *this;
+  }
+};
+
+template <int N> inline Jet1<N> operator+(Jet1<N> a, const Jet1<N> &b) { return a += b; }
+template <int N> inline Jet1<N> operator-(Jet1<N> a, const Jet1<N> &b) { return a -= b; }
+template <int N> inline Jet1<N> operator-(Jet1<N> a) { return a *= -1.0; }
+template <int N> inline Jet1<N> operator*(Jet1<N> a, double s) { return a *= s; }
+template <int N> inline Jet1<N> operator*(double s, Jet1<N> a) { return a *= s; }
+template <int N> inline Jet1<N> operator+(Jet1<N> a, double s)
+{
+  a.v += s;
+  return a;
+}
+template <int N> inline Jet1<N> operator+(double s, Jet1<N> a) { return a + s; }
+template <int N> inline Jet1<N> operator-(Jet1<N> a, double s)
+{
+  a.v -= s;
+  return a;
+}
+template <int N> inline Jet1<N> operator-(double s, Jet1<N> a)
+{
+  a *= -1.0;
+  a.v += s;
+  return a;
+}
+template <int N> inline Jet1<N> operator*(const Jet1<N> &a, const Jet1<N> &b)
+{
+  Jet1<N> c;
+  c.v = a.v * b.v;
+  c.g = a.v * b.g + b.v * a.g;
+  return c;
+}
+template <int N> inline Jet1<N> chain(const Jet1<N> &a, double f, double d1, double)
+{
+  Jet1<N> c;
+  c.v = f;
+  c.g = d1 * a.g;
+  return c;
+}
+template <int N> inline Jet1<N> inverse(const Jet1<N> &a)
+{
+  const double i = 1.0 / a.v;
+  return chain(a, i, -i * i, 0.0);
+}
+template <int N> inline Jet1<N> operator/(const Jet1<N> &a, const Jet1<N> &b) { return a * inverse(b); }
+template <int N> inline Jet1<N> operator/(Jet1<N> a, double s) { return a *= 1.0 / s; }
+template <int N> inline Jet1<N> operator/(double s, const Jet1<N> &a) { return s * inverse(a); }
+template <int N> inline Jet1<N> sqrt(const Jet1<N> &a)
+{
+  const double s = std::sqrt(a.v);
+  return chain(a, s, 0.5 / s, 0.0);
+}
+template <int N> inline Jet1<N> sin(const Jet1<N> &a) { return chain(a, std::sin(a.v), std::cos(a.v), 0.0); }
+template <int N> inline Jet1<N> cos(const Jet1<N> &a) { return chain(a, std::cos(a.v), -std::sin(a.v), 0.0); }
+template <int N> inline Jet1<N> atan2(const Jet1<N> &y, const Jet1<N> &x)
+{
+  const double r2 = x.v * x.v + y.v * y.v;
+  Jet1<N> c;
+  c.v = std::atan2(y.v, x.v);
+  c.g = (x.v / r2) * y.g - (y.v / r2) * x.g;
+  return c;
+}
+template <int N> inline double value(const Jet1<N> &a) { return a.v; }
 
 } // namespace boomdyn::jet

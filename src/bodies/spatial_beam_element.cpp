@@ -4,6 +4,7 @@
 
 #include <array>
 #include <cmath>
+#include <type_traits>
 
 namespace boomdyn::spatial_beam {
 
@@ -105,9 +106,10 @@ void elementTerms(const Section &sec, const Geometry &geo, const T *e, Quadratic
   }
 }
 
-void jetTerms(const Section &sec, const Geometry &geo, const Vec14 &e, QuadraticTerms<Jet> &q)
+template <typename J>
+void jetTerms(const Section &sec, const Geometry &geo, const Vec14 &e, QuadraticTerms<J> &q)
 {
-  Jet x[kCoordinates];
+  J x[kCoordinates];
   detail::seed(e, x);
   elementTerms(sec, geo, x, q);
 }
@@ -154,6 +156,13 @@ double strainEnergy(const Section &sec, const Geometry &geo, const Vec14 &e)
 
 void internalForce(const Section &sec, const Geometry &geo, const Vec14 &e, Vec14 &f, Mat14 *K)
 {
+  if (!K) { // the residual: gradients only
+    QuadraticTerms<detail::Jet1> q;
+    jetTerms(sec, geo, e, q);
+    f.setZero();
+    for (int k = 0; k < q.n; ++k) f += (q.c[k] * q.s[k].v) * q.s[k].g;
+    return;
+  }
   QuadraticTerms<Jet> q;
   jetTerms(sec, geo, e, q);
   f.setZero();
@@ -168,11 +177,12 @@ void internalForce(const Section &sec, const Geometry &geo, const Vec14 &e, Vec1
   }
 }
 
-double dampingForce(const Section &sec, const Geometry &geo, const Vec14 &e, const Vec14 &edot, Vec14 &fd, Mat14 *Kq,
-                    Mat14 *Dv)
+namespace {
+
+// fd, the power and (if asked) Kq and Dv from the terms; Kq needs the Hessians (Jet).
+template <typename J>
+double dampingFromTerms(const QuadraticTerms<J> &q, const Vec14 &edot, Vec14 &fd, Mat14 *Kq, Mat14 *Dv)
 {
-  QuadraticTerms<Jet> q;
-  jetTerms(sec, geo, e, q);
   Vec14 out = Vec14::Zero();
   if (Kq) Kq->setZero();
   if (Dv) Dv->setZero();
@@ -180,18 +190,34 @@ double dampingForce(const Section &sec, const Geometry &geo, const Vec14 &e, con
   for (int k = 0; k < q.n; ++k) {
     const double ce = q.c[k] * q.eta[k];
     if (ce == 0) continue;
-    const Jet &s = q.s[k];
+    const J &s = q.s[k];
     const double rate = s.g.dot(edot);
     out += (ce * rate) * s.g;
     power += ce * rate * rate;
-    if (Kq) {
-      Kq->noalias() += ce * s.g * (s.h * edot).transpose();
-      Kq->noalias() += (ce * rate) * s.h;
-    }
+    if constexpr (std::is_same_v<J, Jet>)
+      if (Kq) {
+        Kq->noalias() += ce * s.g * (s.h * edot).transpose();
+        Kq->noalias() += (ce * rate) * s.h;
+      }
     if (Dv) Dv->noalias() += ce * s.g * s.g.transpose();
   }
   fd = out;
   return power;
+}
+
+} // namespace
+
+double dampingForce(const Section &sec, const Geometry &geo, const Vec14 &e, const Vec14 &edot, Vec14 &fd, Mat14 *Kq,
+                    Mat14 *Dv)
+{
+  if (!Kq) { // fd and Dv need the strains' gradients only
+    QuadraticTerms<detail::Jet1> q;
+    jetTerms(sec, geo, e, q);
+    return dampingFromTerms(q, edot, fd, nullptr, Dv);
+  }
+  QuadraticTerms<Jet> q;
+  jetTerms(sec, geo, e, q);
+  return dampingFromTerms(q, edot, fd, Kq, Dv);
 }
 
 } // namespace boomdyn::spatial_beam

@@ -14,6 +14,7 @@
 namespace boomdyn::spatial_beam::detail {
 
 using Jet = jet::Jet2<kCoordinates>;
+using Jet1 = jet::Jet1<kCoordinates>;
 using std::atan2;
 using std::cos;
 using std::sin;
@@ -54,19 +55,20 @@ inline V3<double> interpolate(const double *e, const Eigen::Vector4d &s)
   }
   return r;
 }
-inline V3<Jet> interpolate(const Jet *e, const Eigen::Vector4d &s)
+template <typename J>
+inline V3<J> interpolate(const J *e, const Eigen::Vector4d &s)
 {
-  V3<Jet> r;
-  Jet *c[3] = {&r.x, &r.y, &r.z};
+  V3<J> r;
+  J *c[3] = {&r.x, &r.y, &r.z};
   for (int d = 0; d < 3; ++d) {
-    Jet::Grad g = Jet::Grad::Zero();
+    typename J::Grad g = J::Grad::Zero();
     double v = 0;
     for (int k = 0; k < 4; ++k) {
       const int o = kShapeOffset[k] + d;
       v += s[k] * e[o].v;
       g[o] = s[k];
     }
-    *c[d] = Jet::linear(v, g);
+    *c[d] = J::linear(v, g);
   }
   return r;
 }
@@ -175,9 +177,10 @@ SectionState<T> sectionState(const NodeData<T> &n, const T *e, double xi, double
 }
 
 // The element vector as independent variables of 14-variable jets.
-inline void seed(const Vec14 &e, Jet *x)
+template <typename J>
+inline void seed(const Vec14 &e, J *x)
 {
-  for (int i = 0; i < kCoordinates; ++i) x[i] = Jet::variable(e[i], i);
+  for (int i = 0; i < kCoordinates; ++i) x[i] = J::variable(e[i], i);
 }
 
 } // namespace boomdyn::spatial_beam::detail
