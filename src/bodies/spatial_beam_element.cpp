@@ -1,6 +1,6 @@
 #include "boomdyn/spatial_beam_element.hpp"
 
-#include "bodies/spatial_beam_strains.hpp"
+#include "spatial_beam_strains.hpp"
 
 #include <array>
 #include <cmath>

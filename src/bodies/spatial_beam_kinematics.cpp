@@ -1,6 +1,6 @@
 #include "boomdyn/spatial_beam_kinematics.hpp"
 
-#include "bodies/spatial_beam_strains.hpp"
+#include "spatial_beam_strains.hpp"
 #include "boomdyn/ancf_element.hpp"
 
 namespace boomdyn::spatial_beam {

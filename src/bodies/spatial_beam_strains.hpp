@@ -5,7 +5,7 @@
 #pragma once
 
 #include "boomdyn/spatial_beam_kinematics.hpp"
-#include "bodies/second_order_jet.hpp"
+#include "second_order_jet.hpp"
 
 #include <Eigen/Dense>
 

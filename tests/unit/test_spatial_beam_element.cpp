@@ -144,6 +144,8 @@ TEST(SpatialBeamElement, ForceIsTheEnergyGradientAndTangentMatchesCentralDiffere
         fdK.col(k) = (force(sec, s.geo, ep) - force(sec, s.geo, em)) / (2 * h);
       }
       EXPECT_LT(relErr(f, fdU), 1e-6) << "axial " << int(axial) << " trial " << trial;
+      // The residual path (first-order jets) gives the force of the tangent path (second-order jets).
+      EXPECT_LT(relErr(force(sec, s.geo, s.e), f), 1e-14);
       EXPECT_LT(relErr(K, fdK), 1e-6) << "axial " << int(axial) << " trial " << trial;
       EXPECT_LT((K - K.transpose()).norm(), 1e-14 * K.norm());
     }
@@ -174,6 +176,11 @@ TEST(SpatialBeamElement, DampingJacobiansMatchCentralDifferences)
       EXPECT_LT(relErr(Dv, fdV), 1e-9) << "axial " << int(axial) << " trial " << trial;
       EXPECT_LT((Dv - Dv.transpose()).norm(), 1e-14 * Dv.norm());
       EXPECT_LT(relErr(fd, Dv * v), 1e-12);
+      Vec14 fdResidual;
+      Mat14 DvResidual;
+      dampingForce(sec, s.geo, s.e, v, fdResidual, nullptr, &DvResidual); // first-order path
+      EXPECT_LT(relErr(fdResidual, fd), 1e-14);
+      EXPECT_LT(relErr(DvResidual, Dv), 1e-14);
       EXPECT_NEAR(power, v.dot(fd), 1e-12 * std::abs(power));
       EXPECT_GT(power, 0.0);
     }
