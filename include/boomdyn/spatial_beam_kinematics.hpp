@@ -72,6 +72,14 @@ SectionFrame sectionFrame(const Geometry &geo, const Vec14 &e, double xi);
 // w . d_i, or a moment's virtual work, differentiated twice).
 Mat14 sectionFrameHessian(const Geometry &geo, const Vec14 &e, double xi, int director, const Vec3 &w);
 
+// The generalized force of a moment M (N m, fixed in space) on the section at
+// xi, work-conjugate to the section's virtual rotation
+// delta psi = 1/2 sum_i d_i x delta d_i:  Q = 1/2 sum_i (dd_i/de)^T (M x d_i),
+// and, if dQ != nullptr, dQ/de (not symmetric: a moment of fixed axis is not
+// conservative in space). The sign is that of an applied force (added to
+// the right-hand side).
+void sectionMomentForce(const Geometry &geo, const Vec14 &e, double xi, const Vec3 &M, Vec14 &Q, Mat14 *dQ);
+
 // The node's section triad (columns d1, d2, d3) from its slope and twist.
 Mat3 nodeTriad(const NodeFrame &ref, const Vec3 &slope, double theta);
 // The twist theta at which the node's section axis d2 points along d2 (the

@@ -69,6 +69,28 @@ Mat14 sectionFrameHessian(const Geometry &geo, const Vec14 &e, double xi, int i,
   return w.x() * d.x.h + w.y() * d.y.h + w.z() * d.z.h;
 }
 
+void sectionMomentForce(const Geometry &geo, const Vec14 &e, double xi, const Vec3 &M, Vec14 &Q, Mat14 *dQ)
+{
+  const JetSection js = jetSection(geo, e, xi);
+  Mat3 Mx; // [M]x v = M x v
+  Mx << 0, -M.z(), M.y(), M.z(), 0, -M.x(), -M.y(), M.x(), 0;
+  Q.setZero();
+  if (dQ) dQ->setZero();
+  for (int i = 0; i < 3; ++i) {
+    const V3<Jet> &d = director(js, i);
+    Mat3x14 grad;
+    grad.row(0) = d.x.g.transpose(), grad.row(1) = d.y.g.transpose(), grad.row(2) = d.z.g.transpose();
+    const Vec3 w = M.cross(Vec3(d.x.v, d.y.v, d.z.v));
+    Q += 0.5 * grad.transpose() * w;
+    if (dQ) {
+      // d/de of (dd_i/de)^T (M x d_i): the director's second derivative
+      // contracted with M x d_i, and the rate of M x d_i itself.
+      dQ->noalias() += 0.5 * (w.x() * d.x.h + w.y() * d.y.h + w.z() * d.z.h);
+      dQ->noalias() += 0.5 * grad.transpose() * Mx * grad;
+    }
+  }
+}
+
 Mat3 nodeTriad(const NodeFrame &ref, const Vec3 &slope, double theta)
 {
   const V3<double> t = detail::unit(fromVec(slope));

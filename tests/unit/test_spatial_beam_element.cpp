@@ -108,6 +108,39 @@ TEST(SpatialBeamKinematics, SectionFrameDerivativesMatchCentralDifferences)
   }
 }
 
+// A moment M on a section does the work M . delta psi, delta psi = 1/2 sum_i
+// d_i x delta d_i: Q . de equals that with delta d_i by central differences
+// of the triad along random de; dQ/de against central differences of Q.
+TEST(SpatialBeamKinematics, SectionMomentForceIsWorkConjugateToTheSectionRotation)
+{
+  std::mt19937 rng(9);
+  for (int trial = 0; trial < 6; ++trial) {
+    const State s = deformedState(rng, 0.5, 0.2, 2.0);
+    const double xi = trial % 2 ? 1.0 : 0.42;
+    const Vec3 M(1.5, -0.7, 2.2);
+    Vec14 Q;
+    Mat14 dQ;
+    sectionMomentForce(s.geo, s.e, xi, M, Q, &dQ);
+    const Vec14 de = randomVelocity(rng, s.geo.l, 1.0);
+    const double h = 1e-6;
+    const Mat3 dp = sectionFrame(s.geo, s.e + h * de, xi).d, dm = sectionFrame(s.geo, s.e - h * de, xi).d;
+    const Mat3 d = sectionFrame(s.geo, s.e, xi).d;
+    Vec3 psi = Vec3::Zero();
+    for (int i = 0; i < 3; ++i) psi += 0.5 * d.col(i).cross((dp.col(i) - dm.col(i)) / (2 * h));
+    EXPECT_NEAR(Q.dot(de), M.dot(psi), 1e-8 * M.norm() * psi.norm()) << "trial " << trial;
+    Mat14 fdQ;
+    for (int k = 0; k < kCoordinates; ++k) {
+      const double hk = 1e-6 * coordinateScale(k, s.geo.l);
+      Vec14 ep = s.e, em = s.e, Qp, Qm;
+      ep[k] += hk, em[k] -= hk;
+      sectionMomentForce(s.geo, ep, xi, M, Qp, nullptr);
+      sectionMomentForce(s.geo, em, xi, M, Qm, nullptr);
+      fdQ.col(k) = (Qp - Qm) / (2 * hk);
+    }
+    EXPECT_LT(relErr(dQ, fdQ), 1e-6) << "trial " << trial;
+  }
+}
+
 TEST(SpatialBeamKinematics, RebasingTheReferenceChangesNoStrain)
 {
   std::mt19937 rng(4);

@@ -78,26 +78,11 @@ struct Cantilever {
   Vec3 tip() const { return q.segment<3>(kNodeCoordinates * elements); }
 };
 
-// The generalized force of a moment M (fixed in space) on the section at the
-// tip, work-conjugate to the section's virtual rotation
-// delta psi = 1/2 sum_i d_i x delta d_i:  Q = 1/2 sum_i (dd_i/de)^T (M x d_i),
-// and its derivative 1/2 sum_i [sum_c (M x d_i)_c d^2 d_ic/de^2 + (dd_i/de)^T [M]x dd_i/de]
-// (not symmetric: a moment of fixed axis is not conservative in space).
+// The tip moment's generalized force and its derivative (sectionMomentForce).
 inline void tipMoment(const Cantilever &b, const Vec3 &M, Vec14 &Q, Mat14 &dQ)
 {
   const int last = b.elements - 1;
-  const Geometry geo = b.geometry(last);
-  const Vec14 e = b.element(last);
-  const SectionFrame f = sectionFrame(geo, e, 1.0);
-  Mat3 Mx;
-  Mx << 0, -M.z(), M.y(), M.z(), 0, -M.x(), -M.y(), M.x(), 0;
-  Q.setZero();
-  dQ.setZero();
-  for (int i = 0; i < 3; ++i) {
-    const Vec3 w = M.cross(f.d.col(i));
-    Q += 0.5 * f.dGrad[i].transpose() * w;
-    dQ += 0.5 * (sectionFrameHessian(geo, e, 1.0, i, w) + f.dGrad[i].transpose() * Mx * f.dGrad[i]);
-  }
+  sectionMomentForce(b.geometry(last), b.element(last), 1.0, M, Q, &dQ);
 }
 
 // Static equilibrium under a tip moment growing linearly to M in `steps`
