@@ -99,4 +99,32 @@ void BM_SpatialBeamDampingJacobians(benchmark::State &state)
 }
 BENCHMARK(BM_SpatialBeamDampingJacobians);
 
+void BM_SpatialBeamInternalAndDampingJacobians(benchmark::State &state)
+{
+  const Section sec = spatialSection();
+  const SpatialState s = deformedState();
+  Vec14 f, fd;
+  Mat14 K, Kq, Dv;
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(s.e);
+    benchmark::DoNotOptimize(internalAndDampingForce(sec, s.geo, s.e, s.edot, f, &K, fd, &Kq, &Dv));
+    benchmark::DoNotOptimize(K);
+    benchmark::DoNotOptimize(Kq);
+  }
+}
+BENCHMARK(BM_SpatialBeamInternalAndDampingJacobians);
+
+void BM_SpatialBeamInternalAndDampingForce(benchmark::State &state)
+{
+  const Section sec = spatialSection();
+  const SpatialState s = deformedState();
+  Vec14 f, fd;
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(s.e);
+    benchmark::DoNotOptimize(internalAndDampingForce(sec, s.geo, s.e, s.edot, f, nullptr, fd, nullptr, nullptr));
+    benchmark::DoNotOptimize(f);
+  }
+}
+BENCHMARK(BM_SpatialBeamInternalAndDampingForce);
+
 } // namespace

@@ -154,29 +154,6 @@ double strainEnergy(const Section &sec, const Geometry &geo, const Vec14 &e)
   return 0.5 * U;
 }
 
-void internalForce(const Section &sec, const Geometry &geo, const Vec14 &e, Vec14 &f, Mat14 *K)
-{
-  if (!K) { // the residual: gradients only
-    QuadraticTerms<detail::Jet1> q;
-    jetTerms(sec, geo, e, q);
-    f.setZero();
-    for (int k = 0; k < q.n; ++k) f += (q.c[k] * q.s[k].v) * q.s[k].g;
-    return;
-  }
-  QuadraticTerms<Jet> q;
-  jetTerms(sec, geo, e, q);
-  f.setZero();
-  if (K) K->setZero();
-  for (int k = 0; k < q.n; ++k) {
-    const Jet &s = q.s[k];
-    f += (q.c[k] * s.v) * s.g;
-    if (K) {
-      K->noalias() += q.c[k] * s.g * s.g.transpose();
-      K->noalias() += (q.c[k] * s.v) * s.h;
-    }
-  }
-}
-
 namespace {
 
 // fd, the power and (if asked) Kq and Dv from the terms; Kq needs the Hessians (Jet).
@@ -206,6 +183,56 @@ double dampingFromTerms(const QuadraticTerms<J> &q, const Vec14 &edot, Vec14 &fd
 }
 
 } // namespace
+
+namespace {
+
+// f = sum_k c_k s_k ds_k/de and, for jets with Hessians and K != nullptr,
+// K = sum_k c_k (ds_k/de ds_k/de^T + s_k d^2 s_k/de^2).
+template <typename J>
+void elasticFromTerms(const QuadraticTerms<J> &q, Vec14 &f, Mat14 *K)
+{
+  f.setZero();
+  if (K) K->setZero();
+  for (int k = 0; k < q.n; ++k) {
+    const J &s = q.s[k];
+    f += (q.c[k] * s.v) * s.g;
+    if constexpr (std::is_same_v<J, Jet>)
+      if (K) {
+        K->noalias() += q.c[k] * s.g * s.g.transpose();
+        K->noalias() += (q.c[k] * s.v) * s.h;
+      }
+  }
+}
+
+} // namespace
+
+void internalForce(const Section &sec, const Geometry &geo, const Vec14 &e, Vec14 &f, Mat14 *K)
+{
+  if (!K) { // the residual: gradients only
+    QuadraticTerms<detail::Jet1> q;
+    jetTerms(sec, geo, e, q);
+    elasticFromTerms(q, f, nullptr);
+    return;
+  }
+  QuadraticTerms<Jet> q;
+  jetTerms(sec, geo, e, q);
+  elasticFromTerms(q, f, K);
+}
+
+double internalAndDampingForce(const Section &sec, const Geometry &geo, const Vec14 &e, const Vec14 &edot, Vec14 &f,
+                               Mat14 *K, Vec14 &fd, Mat14 *Kq, Mat14 *Dv)
+{
+  if (!K && !Kq) {
+    QuadraticTerms<detail::Jet1> q;
+    jetTerms(sec, geo, e, q);
+    elasticFromTerms(q, f, nullptr);
+    return dampingFromTerms(q, edot, fd, nullptr, Dv);
+  }
+  QuadraticTerms<Jet> q;
+  jetTerms(sec, geo, e, q);
+  elasticFromTerms(q, f, K);
+  return dampingFromTerms(q, edot, fd, Kq, Dv);
+}
 
 double dampingForce(const Section &sec, const Geometry &geo, const Vec14 &e, const Vec14 &edot, Vec14 &fd, Mat14 *Kq,
                     Mat14 *Dv)

@@ -214,6 +214,19 @@ TEST(SpatialBeamElement, DampingJacobiansMatchCentralDifferences)
       dampingForce(sec, s.geo, s.e, v, fdResidual, nullptr, &DvResidual); // first-order path
       EXPECT_LT(relErr(fdResidual, fd), 1e-14);
       EXPECT_LT(relErr(DvResidual, Dv), 1e-14);
+      // One pass for both: the same values as the two calls, bit for bit.
+      Vec14 f1, f2, fd2;
+      Mat14 K1, K2, Kq2, Dv2;
+      internalForce(sec, s.geo, s.e, f1, &K1);
+      EXPECT_EQ(internalAndDampingForce(sec, s.geo, s.e, v, f2, &K2, fd2, &Kq2, &Dv2), power);
+      EXPECT_EQ(f2, f1);
+      EXPECT_EQ(K2, K1);
+      EXPECT_EQ(fd2, fd);
+      EXPECT_EQ(Kq2, Kq);
+      EXPECT_EQ(Dv2, Dv);
+      internalAndDampingForce(sec, s.geo, s.e, v, f2, nullptr, fd2, nullptr, nullptr);
+      EXPECT_EQ(f2, force(sec, s.geo, s.e));
+      EXPECT_EQ(fd2, fdResidual);
       EXPECT_NEAR(power, v.dot(fd), 1e-12 * std::abs(power));
       EXPECT_GT(power, 0.0);
     }
