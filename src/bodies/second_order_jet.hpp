@@ -86,9 +86,36 @@ template <int N> inline Jet2<N> operator*(const Jet2<N> &a, const Jet2<N> &b)
   Jet2<N> c;
   c.v = a.v * b.v;
   c.g = a.v * b.g + b.v * a.g;
-  c.h.noalias() = a.v * b.h + b.v * a.h;
-  c.h.noalias() += a.g * b.g.transpose();
-  c.h.noalias() += b.g * a.g.transpose();
+  // One pass over the Hessian (lazy outer products: no temporaries).
+  c.h.noalias() = a.v * b.h + b.v * a.h + a.g.lazyProduct(b.g.transpose()) + b.g.lazyProduct(a.g.transpose());
+  return c;
+}
+
+// a0 b0 + s a1 b1 and a0 b0 + a1 b1 + a2 b2 in one pass over the Hessian
+// (the cross and dot products of 3-vectors of jets: most of the operations).
+template <int N>
+inline Jet2<N> sumOfProducts(const Jet2<N> &a0, const Jet2<N> &b0, const Jet2<N> &a1, const Jet2<N> &b1, double s)
+{
+  Jet2<N> c;
+  c.v = a0.v * b0.v + s * (a1.v * b1.v);
+  c.g = a0.v * b0.g + b0.v * a0.g + s * (a1.v * b1.g + b1.v * a1.g);
+  const typename Jet2<N>::Grad sa1 = s * a1.g, sb1 = s * b1.g;
+  c.h.noalias() = a0.v * b0.h + b0.v * a0.h + (s * a1.v) * b1.h + (s * b1.v) * a1.h +
+                  a0.g.lazyProduct(b0.g.transpose()) + b0.g.lazyProduct(a0.g.transpose()) +
+                  sa1.lazyProduct(b1.g.transpose()) + sb1.lazyProduct(a1.g.transpose());
+  return c;
+}
+template <int N>
+inline Jet2<N> sumOfProducts(const Jet2<N> &a0, const Jet2<N> &b0, const Jet2<N> &a1, const Jet2<N> &b1,
+                             const Jet2<N> &a2, const Jet2<N> &b2)
+{
+  Jet2<N> c;
+  c.v = a0.v * b0.v + a1.v * b1.v + a2.v * b2.v;
+  c.g = a0.v * b0.g + b0.v * a0.g + a1.v * b1.g + b1.v * a1.g + a2.v * b2.g + b2.v * a2.g;
+  c.h.noalias() = a0.v * b0.h + b0.v * a0.h + a1.v * b1.h + b1.v * a1.h + a2.v * b2.h + b2.v * a2.h +
+                  a0.g.lazyProduct(b0.g.transpose()) + b0.g.lazyProduct(a0.g.transpose()) +
+                  a1.g.lazyProduct(b1.g.transpose()) + b1.g.lazyProduct(a1.g.transpose()) +
+                  a2.g.lazyProduct(b2.g.transpose()) + b2.g.lazyProduct(a2.g.transpose());
   return c;
 }
 
@@ -98,8 +125,8 @@ template <int N> inline Jet2<N> chain(const Jet2<N> &a, double f, double d1, dou
   Jet2<N> c;
   c.v = f;
   c.g = d1 * a.g;
-  c.h.noalias() = d1 * a.h;
-  c.h.noalias() += d2 * a.g * a.g.transpose();
+  const typename Jet2<N>::Grad d2g = d2 * a.g;
+  c.h.noalias() = d1 * a.h + d2g.lazyProduct(a.g.transpose());
   return c;
 }
 

@@ -8,7 +8,6 @@
 
 namespace boomdyn::spatial_beam {
 
-using detail::Jet;
 using detail::V3;
 
 namespace {
@@ -54,7 +53,8 @@ double legendre01(int j, double xi) { return j == 0 ? 1.0 : std::sqrt(3.0) * (2.
 // The element's energy as a sum of quadratic terms U = 1/2 sum_k c_k s_k^2:
 // each strain at each quadrature point (or, for the Assumed axial strain,
 // each coefficient of its projection) with its weight c_k = (weight) l C
-// and retardation time eta_k. T: double (energy) or Jet (force, tangent).
+// and retardation time eta_k. T: double (energy) or a jet over the reduced
+// variables w (force; with Hessians, the tangent).
 template <typename T>
 struct QuadraticTerms {
   static constexpr int kMax = 4 * kGaussPoints + kReducedAxialPoints + ancf::kAssumedTerms;
@@ -106,13 +106,20 @@ void elementTerms(const Section &sec, const Geometry &geo, const T *e, Quadratic
   }
 }
 
+// The terms on jets over the reduced variables w (spatial_beam_strains.hpp).
 template <typename J>
 void jetTerms(const Section &sec, const Geometry &geo, const Vec14 &e, QuadraticTerms<J> &q)
 {
   J x[kCoordinates];
-  detail::seed(e, x);
+  detail::seedReduced(e, x);
   elementTerms(sec, geo, x, q);
 }
+
+using detail::kReduced;
+using detail::ReducedJet;
+using detail::ReducedJet1;
+using VecW = Eigen::Matrix<double, kReduced, 1>;
+using MatW = Eigen::Matrix<double, kReduced, kReduced>;
 
 } // namespace
 
@@ -156,29 +163,33 @@ double strainEnergy(const Section &sec, const Geometry &geo, const Vec14 &e)
 
 namespace {
 
-// fd, the power and (if asked) Kq and Dv from the terms; Kq needs the Hessians (Jet).
+// fd, the power and (if asked) Kq and Dv from the terms, summed over w and
+// mapped to e once; Kq needs the Hessians (ReducedJet).
 template <typename J>
 double dampingFromTerms(const QuadraticTerms<J> &q, const Vec14 &edot, Vec14 &fd, Mat14 *Kq, Mat14 *Dv)
 {
-  Vec14 out = Vec14::Zero();
-  if (Kq) Kq->setZero();
-  if (Dv) Dv->setZero();
+  const detail::ReducedMap &P = detail::reducedMap();
+  const VecW wdot = P.transpose() * edot; // rates of w (P^T: r_1 - r_0 gets rdot_1 - rdot_0)
+  VecW out = VecW::Zero();
+  MatW Kqw = MatW::Zero(), Dvw = MatW::Zero();
   double power = 0;
   for (int k = 0; k < q.n; ++k) {
     const double ce = q.c[k] * q.eta[k];
     if (ce == 0) continue;
     const J &s = q.s[k];
-    const double rate = s.g.dot(edot);
+    const double rate = s.g.dot(wdot);
     out += (ce * rate) * s.g;
     power += ce * rate * rate;
-    if constexpr (std::is_same_v<J, Jet>)
+    if constexpr (std::is_same_v<J, ReducedJet>)
       if (Kq) {
-        Kq->noalias() += ce * s.g * (s.h * edot).transpose();
-        Kq->noalias() += (ce * rate) * s.h;
+        Kqw.noalias() += ce * s.g * (s.h * wdot).transpose();
+        Kqw.noalias() += (ce * rate) * s.h;
       }
-    if (Dv) Dv->noalias() += ce * s.g * s.g.transpose();
+    if (Dv) Dvw.noalias() += ce * s.g * s.g.transpose();
   }
-  fd = out;
+  fd.noalias() = P * out;
+  if (Kq) Kq->noalias() = P * Kqw * P.transpose();
+  if (Dv) Dv->noalias() = P * Dvw * P.transpose();
   return power;
 }
 
@@ -188,20 +199,24 @@ namespace {
 
 // f = sum_k c_k s_k ds_k/de and, for jets with Hessians and K != nullptr,
 // K = sum_k c_k (ds_k/de ds_k/de^T + s_k d^2 s_k/de^2).
+// Sums over w, mapped to e once: f = P f_w, K = P K_w P^T.
 template <typename J>
 void elasticFromTerms(const QuadraticTerms<J> &q, Vec14 &f, Mat14 *K)
 {
-  f.setZero();
-  if (K) K->setZero();
+  const detail::ReducedMap &P = detail::reducedMap();
+  VecW fw = VecW::Zero();
+  MatW Kw = MatW::Zero();
   for (int k = 0; k < q.n; ++k) {
     const J &s = q.s[k];
-    f += (q.c[k] * s.v) * s.g;
-    if constexpr (std::is_same_v<J, Jet>)
+    fw += (q.c[k] * s.v) * s.g;
+    if constexpr (std::is_same_v<J, ReducedJet>)
       if (K) {
-        K->noalias() += q.c[k] * s.g * s.g.transpose();
-        K->noalias() += (q.c[k] * s.v) * s.h;
+        Kw.noalias() += q.c[k] * s.g * s.g.transpose();
+        Kw.noalias() += (q.c[k] * s.v) * s.h;
       }
   }
+  f.noalias() = P * fw;
+  if (K) K->noalias() = P * Kw * P.transpose();
 }
 
 } // namespace
@@ -209,12 +224,12 @@ void elasticFromTerms(const QuadraticTerms<J> &q, Vec14 &f, Mat14 *K)
 void internalForce(const Section &sec, const Geometry &geo, const Vec14 &e, Vec14 &f, Mat14 *K)
 {
   if (!K) { // the residual: gradients only
-    QuadraticTerms<detail::Jet1> q;
+    QuadraticTerms<ReducedJet1> q;
     jetTerms(sec, geo, e, q);
     elasticFromTerms(q, f, nullptr);
     return;
   }
-  QuadraticTerms<Jet> q;
+  QuadraticTerms<ReducedJet> q;
   jetTerms(sec, geo, e, q);
   elasticFromTerms(q, f, K);
 }
@@ -223,12 +238,12 @@ double internalAndDampingForce(const Section &sec, const Geometry &geo, const Ve
                                Mat14 *K, Vec14 &fd, Mat14 *Kq, Mat14 *Dv)
 {
   if (!K && !Kq) {
-    QuadraticTerms<detail::Jet1> q;
+    QuadraticTerms<ReducedJet1> q;
     jetTerms(sec, geo, e, q);
     elasticFromTerms(q, f, nullptr);
     return dampingFromTerms(q, edot, fd, nullptr, Dv);
   }
-  QuadraticTerms<Jet> q;
+  QuadraticTerms<ReducedJet> q;
   jetTerms(sec, geo, e, q);
   elasticFromTerms(q, f, K);
   return dampingFromTerms(q, edot, fd, Kq, Dv);
@@ -238,11 +253,11 @@ double dampingForce(const Section &sec, const Geometry &geo, const Vec14 &e, con
                     Mat14 *Dv)
 {
   if (!Kq) { // fd and Dv need the strains' gradients only
-    QuadraticTerms<detail::Jet1> q;
+    QuadraticTerms<ReducedJet1> q;
     jetTerms(sec, geo, e, q);
     return dampingFromTerms(q, edot, fd, nullptr, Dv);
   }
-  QuadraticTerms<Jet> q;
+  QuadraticTerms<ReducedJet> q;
   jetTerms(sec, geo, e, q);
   return dampingFromTerms(q, edot, fd, Kq, Dv);
 }

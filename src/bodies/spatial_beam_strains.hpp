@@ -15,6 +15,31 @@ namespace boomdyn::spatial_beam::detail {
 
 using Jet = jet::Jet2<kCoordinates>;
 using Jet1 = jet::Jet1<kCoordinates>;
+
+// The strains do not change when the element is translated: they depend on
+// e only through w = [r_1 - r_0, r'_0, theta_0, r'_1, theta_1] (11 entries),
+// and jets over w carry 11 x 11 instead of 14 x 14 Hessians. kReducedSlot[i]
+// is the entry of w that coordinate i of e feeds (-1: r_0, held constant;
+// its derivatives are minus those of r_1 - r_0).
+constexpr int kReduced = 12; // 11 used; an even size keeps Eigen's 2-wide vector loops
+constexpr int kReducedSlot[kCoordinates] = {-1, -1, -1, 3, 4, 5, 6, 0, 1, 2, 7, 8, 9, 10};
+using ReducedJet = jet::Jet2<kReduced>;
+using ReducedJet1 = jet::Jet1<kReduced>;
+using ReducedMap = Eigen::Matrix<double, kCoordinates, kReduced>;
+
+// P with de-derivatives = P (dw-derivatives): +1 from r_1, r'_a, theta_a to
+// their entries of w, -1 from r_0 to r_1 - r_0.
+inline const ReducedMap &reducedMap()
+{
+  static const ReducedMap P = [] {
+    ReducedMap m = ReducedMap::Zero();
+    for (int i = 0; i < kCoordinates; ++i)
+      if (kReducedSlot[i] >= 0) m(i, kReducedSlot[i]) = 1.0;
+    for (int d = 0; d < 3; ++d) m(positionIndex(0) + d, d) = -1.0;
+    return m;
+  }();
+  return P;
+}
 using std::atan2;
 using std::cos;
 using std::sin;
@@ -39,13 +64,24 @@ template <typename T> inline V3<T> cross(const V3<T> &a, const V3<T> &b)
 {
   return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
 }
+// The same products on second-order jets, each in one pass (sumOfProducts).
+template <int N> inline jet::Jet2<N> dot(const V3<jet::Jet2<N>> &a, const V3<jet::Jet2<N>> &b)
+{
+  return jet::sumOfProducts(a.x, b.x, a.y, b.y, a.z, b.z);
+}
+template <int N> inline V3<jet::Jet2<N>> cross(const V3<jet::Jet2<N>> &a, const V3<jet::Jet2<N>> &b)
+{
+  return {jet::sumOfProducts(a.y, b.z, a.z, b.y, -1.0), jet::sumOfProducts(a.z, b.x, a.x, b.z, -1.0),
+          jet::sumOfProducts(a.x, b.y, a.y, b.x, -1.0)};
+}
 template <typename T> inline V3<T> constant(const Vec3 &v) { return {T(v.x()), T(v.y()), T(v.z())}; }
 
 // Offsets of the four Hermite coefficient vectors r_0, r'_0, r_1, r'_1 in e.
 constexpr int kShapeOffset[4] = {positionIndex(0), slopeIndex(0), positionIndex(1), slopeIndex(1)};
 
 // sum_k s_k q_k (one Hermite interpolation) from the element vector. For a
-// jet the result is linear in e: its gradient is formed directly.
+// jet the result is linear in the variables: its gradient is the same sum of
+// the coefficients' gradients, its Hessian zero.
 inline V3<double> interpolate(const double *e, const Eigen::Vector4d &s)
 {
   V3<double> r{0, 0, 0};
@@ -66,7 +102,7 @@ inline V3<J> interpolate(const J *e, const Eigen::Vector4d &s)
     for (int k = 0; k < 4; ++k) {
       const int o = kShapeOffset[k] + d;
       v += s[k] * e[o].v;
-      g[o] = s[k];
+      g += s[k] * e[o].g;
     }
     *c[d] = J::linear(v, g);
   }
@@ -174,6 +210,13 @@ SectionState<T> sectionState(const NodeData<T> &n, const T *e, double xi, double
   s.curvature2 = dot(kappa, s.d2);
   s.curvature3 = dot(kappa, s.d3);
   return s;
+}
+
+// The element vector as jets over w: r_0 constant, the others variables.
+template <typename J>
+inline void seedReduced(const Vec14 &e, J *x)
+{
+  for (int i = 0; i < kCoordinates; ++i) x[i] = kReducedSlot[i] < 0 ? J(e[i]) : J::variable(e[i], kReducedSlot[i]);
 }
 
 // The element vector as independent variables of 14-variable jets.
