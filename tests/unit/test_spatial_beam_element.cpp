@@ -342,3 +342,27 @@ TEST(SpatialBeamSection, BoxSectionUsesBredtsTorsionConstant)
   EXPECT_NEAR(s.EIy, 2.0 / 3.0 * b * b * b * t, 1e-15);
   EXPECT_NEAR(s.EA, 4 * b * t, 1e-15);
 }
+
+// The Assumed axial strain's pointwise weight gamma = min(1, 1e4 min(EIy, EIz)
+// / (EA L^2)): a stocky beam (gamma = 1) is the Full element exactly, a
+// slender one differs where the strain is not linear along the element.
+TEST(SpatialBeamElement, AssumedAxialStrainIsFullForStockyBeams)
+{
+  std::mt19937 rng(10);
+  Section full = steelBox(AxialIntegration::Full), assumed = steelBox(AxialIntegration::Assumed);
+  full.length = assumed.length = 5.0; // EA L^2 / EI ~ 1.6e3
+  EXPECT_EQ(assumedPointwiseWeight(assumed, 0.5), 1.0);
+  const State s = deformedState(rng, 0.5, 0.2, 2.0);
+  EXPECT_EQ(strainEnergy(assumed, s.geo, s.e), strainEnergy(full, s.geo, s.e));
+  Vec14 fa, ff;
+  Mat14 Ka, Kf;
+  internalForce(assumed, s.geo, s.e, fa, &Ka);
+  internalForce(full, s.geo, s.e, ff, &Kf);
+  EXPECT_EQ(fa, ff);
+  EXPECT_EQ(Ka, Kf);
+  assumed.length = 100.0;
+  const double gamma = assumedPointwiseWeight(assumed, 0.5);
+  EXPECT_NEAR(gamma, 1e4 * std::min(assumed.EIy, assumed.EIz) / (assumed.EA * 1e4), 1e-15);
+  EXPECT_LT(gamma, 0.1);
+  EXPECT_GT(std::abs(strainEnergy(assumed, s.geo, s.e) / strainEnergy(full, s.geo, s.e) - 1), 1e-6);
+}
