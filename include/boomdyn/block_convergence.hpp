@@ -14,7 +14,10 @@
 //     increments, 100 eps |q| (the coordinates' 2-norm): increments cannot
 //     get smaller than that, however many iterations are made.
 // Friction states are judged entry by entry against max(|z|, g_max/sigma0),
-// their natural size (g_max = max(mu_s, mu_c) bounds |z| sigma0).
+// their natural size (g_max = max(mu_s, mu_c) bounds |z| sigma0); the
+// other first-order states (a hydraulic cylinder's pressures, stroke
+// memory and spool) belong to the same block, each against max(|x|, its
+// floor) (Model::firstOrderFloors).
 // The iteration has converged when every block has. rtol and stol are
 // SNES's own (-snes_rtol, -snes_stol); the test does not depend on whether
 // the Jacobian is reused.

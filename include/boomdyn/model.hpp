@@ -80,8 +80,13 @@ public:
   // Sliding joints, mutable through a const Model: which track element holds
   // the contact point is topology state that follows the solution.
   const std::vector<std::shared_ptr<SlidingJoint>> &slidingJoints() const { return slidingJoints_; }
-  // Coordinates that are first-order states (LuGre z), with their joints' names.
+  // Coordinates that are first-order states (LuGre z, hydraulic pressures),
+  // with their owners' names (the friction's joint, the cylinder).
   const std::vector<PetscInt> &firstOrderCoordinates() const { return firstOrder_; }
+  // Per first-order state, the size below which Newton judges its
+  // increments absolutely (0 for friction states: their floor comes from
+  // the friction law, BlockConvergence).
+  const std::vector<double> &firstOrderFloors() const { return firstOrderFloor_; }
   const std::vector<std::string> &frictionJointNames() const { return frictionJoints_; }
   // The friction elements, in the order of frictionJointNames().
   const std::vector<const LuGreFriction *> &frictions() const { return frictions_; }
@@ -138,8 +143,9 @@ private:
   std::vector<PostStepHook> postStepHooks_;
   std::vector<EventSource> eventSources_;
   std::vector<std::shared_ptr<SlidingJoint>> slidingJoints_;
-  std::vector<std::pair<PetscInt, double>> slackInitial_; // (slack coordinate, initial s)
+  std::vector<std::pair<PetscInt, double>> slackInitial_; // (slack coordinate or first-order state, initial value)
   std::vector<PetscInt> firstOrder_;
+  std::vector<double> firstOrderFloor_;
   std::vector<std::string> frictionJoints_;
   std::vector<const LuGreFriction *> frictions_;
   std::vector<const PadContact *> pads_;

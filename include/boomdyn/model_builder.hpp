@@ -62,6 +62,10 @@ public:
   PetscInt addCoordinate(double initial);
   // A new first-order state (LuGre z) of the friction at joint `joint`.
   PetscInt addFirstOrderState(const std::string &joint);
+  // A new first-order state of component `owner` (a hydraulic cylinder's
+  // chamber pressure), starting at `initial`; Newton judges its increments
+  // against max(|value|, floor) (BlockConvergence).
+  PetscInt addFirstOrderState(const std::string &owner, double initial, double floor);
   // Multiplier rows follow all coordinates: call in the build stage only.
   const ConstraintItem &addConstraint(std::shared_ptr<Constraint> c, const SourceMark &mark);
   void addItem(std::unique_ptr<WorkItem> item) { model_.items_.push_back(std::move(item)); }

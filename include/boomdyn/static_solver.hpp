@@ -9,6 +9,7 @@
 
 #include <functional>
 #include <string>
+#include <vector>
 
 namespace boomdyn {
 
@@ -40,6 +41,7 @@ private:
   NewtonSolver newton_;
   PetscHandle<Vec> lambda_, backup_;
   double sigma_ = 1, structureSize_ = 0;
+  std::vector<PetscInt> firstOrder_; // sorted: left out of the size test
   std::string failure_;
 };
 

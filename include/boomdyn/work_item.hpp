@@ -53,6 +53,11 @@ struct AssemblyContext {
   // that do not enter the Jacobian asked for (a beam's internal force in a
   // mass or damping pass); the residual it writes is discarded.
   bool residualWanted = true;
+  // The passes of the eigen-analysis' pencil (Assembler::evaluatePencil,
+  // assembleDamping): first-order states that are not frozen there enter
+  // through their linearization about the state (a hydraulic cylinder's
+  // chamber pressures: docs/model.md §2.6) instead of their static rows.
+  bool pencil = false;
 };
 
 // Values of the item's unknowns, in the order of dofs(): q, v, a of the

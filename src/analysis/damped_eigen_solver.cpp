@@ -45,6 +45,7 @@ PetscErrorCode assembleDamping(Assembler &assembler, double t, Vec q, Vec lambda
   ctx.t = t;
   ctx.sigma = sigma;
   ctx.kin = {0.0, 1.0, 0.0, 0.0};
+  ctx.pencil = true;
   ctx.constraintBlocks = false; // same pattern as the pencil, zeros in the constraint blocks
   PetscCall(assembler.setOffsets(x, vc, nullptr));
   PetscCall(assembler.evaluate(ctx, x, nullptr, D));

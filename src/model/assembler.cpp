@@ -420,6 +420,7 @@ PetscErrorCode Assembler::evaluatePencil(const AssemblyContext &context, Vec x, 
   passes[1].ctx.constraintBlocks = passes[2].ctx.constraintBlocks = false;
   for (Pass &p : passes) {
     p.ctx.residualWanted = false;
+    p.ctx.pencil = true;
     if (p.J) p.values.assign(cooV_.size(), 0.0);
   }
   PetscFunctionBeginUser;

@@ -19,6 +19,7 @@
   X(elasticRopeType) \
   X(distanceType) \
   X(groundContactType) \
+  X(hydraulicCylinderType) \
   X(pointForceType) \
   X(pointMassType) \
   X(springType) \

@@ -28,6 +28,14 @@ PetscErrorCode BlockConvergence::setUp(const Model &model, Vec x)
   for (PetscInt g = std::max(lo, model.numCoordinates()); g < hi; ++g) block_[g - lo] = Multipliers;
   for (const auto &joint : model.slidingJoints())
     if (owned(joint->slackIndex())) block_[joint->slackIndex() - lo] = Slacks;
+  // Other first-order states (a cylinder's pressures) are judged like the
+  // friction states, entry by entry against their own size.
+  for (std::size_t k = 0; k < model.firstOrderCoordinates().size(); ++k) {
+    const PetscInt g = model.firstOrderCoordinates()[k];
+    if (!owned(g) || !(model.firstOrderFloors()[k] > 0)) continue;
+    block_[g - lo] = FrictionStates;
+    zFloor_[g - lo] = model.firstOrderFloors()[k];
+  }
   for (const LuGreFriction *f : model.frictions()) {
     const PetscInt g = f->stateIndex();
     if (!owned(g)) continue;

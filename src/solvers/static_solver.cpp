@@ -3,6 +3,7 @@
 #include "boomdyn/log_events.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <string>
 
@@ -12,6 +13,8 @@ PetscErrorCode StaticSolver::setUp()
 {
   PetscFunctionBeginUser;
   for (const auto &b : assembler_.model().bodies()) structureSize_ = std::max(structureSize_, b->length());
+  firstOrder_ = assembler_.model().firstOrderCoordinates();
+  std::sort(firstOrder_.begin(), firstOrder_.end());
   PetscCall(assembler_.createVector(lambda_.address()));
   PetscCall(assembler_.createVector(backup_.address()));
   PetscCall(newton_.setUp(assembler_, "static_", 50, false));
@@ -47,8 +50,23 @@ PetscErrorCode StaticSolver::solve(double t, int loadSteps, Vec x,
     // A singular stiffness (a mechanism without supports, redundant
     // constraints) can let Newton "converge" to absurd displacements: a
     // solution a million times the structure's size is no equilibrium.
-    PetscReal size;
-    PetscCall(VecNorm(x, NORM_INFINITY, &size));
+    // First-order states are left out: a cylinder's pressures (Pa) are no
+    // displacements.
+    PetscReal size = 0;
+    {
+      PetscInt lo, hi;
+      const PetscScalar *xa;
+      PetscCall(VecGetOwnershipRange(x, &lo, &hi));
+      PetscCall(VecGetArrayRead(x, &xa));
+      std::size_t k = 0;
+      for (PetscInt g = lo; g < hi; ++g) {
+        while (k < firstOrder_.size() && firstOrder_[k] < g) ++k;
+        if (k < firstOrder_.size() && firstOrder_[k] == g) continue;
+        size = std::max(size, std::abs(xa[g - lo]));
+      }
+      PetscCall(VecRestoreArrayRead(x, &xa));
+      PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &size, 1, MPIU_REAL, MPI_MAX, assembler_.comm()));
+    }
     if (reason > 0 && !(size < 1e6 * (1.0 + structureSize_))) {
       *converged = PETSC_FALSE;
       char grown[32];

@@ -82,7 +82,7 @@ TEST(PhysicsTypes, ConstraintTypesInRegistrationOrderAndInTheDocs)
   for (const PhysicsType *t : physicsTypesOf("constraints")) names.push_back(t->schema.type);
   const std::vector<std::string> expected{"clamp",           "pin",  "angle_drive",  "sliding_joint",
                                           "extraction_drive", "rope", "elastic_rope", "distance",
-                                          "ground_contact"};
+                                          "ground_contact", "hydraulic_cylinder"};
   EXPECT_EQ(names, expected);
   const std::string md = schemaMarkdown("constraints");
   for (const std::string &n : expected) EXPECT_NE(md.find("#### `" + n + "`"), std::string::npos) << n;
