@@ -128,6 +128,11 @@ ComponentSpec ComponentReader::parseComponent(const Field &f, std::size_t index,
   if (isBodies(section)) m.require("name");
   const std::string inOther = otherDimension == 3 ? "only allowed in a spatial scene (top-level key 'dimension: 3')"
                                                   : "not allowed in a spatial scene (dimension: 3)";
+  // A planar scene's key that only spatial types take is still an unknown
+  // key here (the user may have meant something else), with the hint.
+  const std::string keyInOther =
+      otherDimension == 3 ? "unknown key in a planar scene (spatial scenes, top-level key 'dimension: 3', take it)"
+                          : inOther;
   auto chooseType = [&](const Field &t) {
     if (t.node.IsScalar() && std::find(typeNames.begin(), typeNames.end(), t.node.Scalar()) == typeNames.end())
       for (const PhysicsType *o : others)
@@ -151,7 +156,7 @@ ComponentSpec ComponentReader::parseComponent(const Field &f, std::size_t index,
       for (const PhysicsType *t : types) explained = explained || t->schema.find(k.key);
       for (const KeyRule &rule : type->schema.rules)
         explained = explained || (rule.key == k.key && rule.when == KeyRule::When::Always);
-      if (!explained) m.forbid(k.key, inOther);
+      if (!explained) m.forbid(k.key, keyInOther);
     }
   ComponentSpec spec;
   spec.type = type->schema.type;
