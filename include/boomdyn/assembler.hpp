@@ -81,6 +81,8 @@ public:
   PetscErrorCode coordinateRange(PetscInt *begin, PetscInt *end) const;
   // x = [initial coordinates of the model | 0].
   PetscErrorCode initialState(Vec x) const;
+  // The initial velocities (Model::initialVelocities) in a vector of x's layout.
+  PetscErrorCode initialVelocity(Vec v) const;
   // dst's multiplier entries = scale * src's multiplier entries (coordinates of dst untouched).
   PetscErrorCode copyMultipliers(Vec src, Vec dst, PetscReal scale) const;
 

@@ -1,8 +1,10 @@
-// A body owns a contiguous block of the global coordinate vector and offers a
+// A body owns a contiguous block of the global coordinate vector (BodyBase,
+// the same in planar and spatial scenes). A planar body (Body) offers a
 // "centerline" view: position r(s) and its s-derivatives at a material
 // coordinate s, with their derivatives with respect to the coordinates they
 // depend on. Joints, loads and sensors only use this view, so they do not
-// care whether they touch an ANCF beam or a rigid body.
+// care whether they touch an ANCF beam or a rigid body. Spatial bodies offer
+// the spatial view of spatial_body.hpp instead.
 #pragma once
 
 #include <Eigen/Dense>
@@ -35,15 +37,34 @@ struct CenterlineSample {
   bool linear = true;
 };
 
-class Body {
+// What every body is, whatever the dimension of its scene: a name, a length
+// along which material coordinates s run, and its block of coordinates.
+class BodyBase {
 public:
-  virtual ~Body() = default;
+  virtual ~BodyBase() = default;
   const std::string &name() const { return name_; }
   double length() const { return length_; }
   PetscInt firstCoordinate() const { return first_; }
   virtual PetscInt numCoordinates() const = 0;
   // Coordinates of the initial (undeformed) configuration, numCoordinates() values.
   virtual void initialCoordinates(double *q) const = 0;
+  // Velocities of the initial state, numCoordinates() values; the caller
+  // zeroes them first (bodies that start at rest leave them).
+  virtual void initialVelocities(double *v) const { (void)v; }
+  // 2: a planar body (Body, below); 3: a spatial body (SpatialBody).
+  virtual int dimension() const = 0;
+
+protected:
+  BodyBase(std::string name, double length, PetscInt first) : name_(std::move(name)), length_(length), first_(first) {}
+  std::string name_;
+  double length_;
+  PetscInt first_;
+};
+
+// A planar body and its centerline view.
+class Body : public BodyBase {
+public:
+  int dimension() const override { return 2; }
   // Which coordinates the point at s depends on. s must lie in [0, length].
   virtual CenterlineLocation locate(double s) const = 0;
   // Evaluate at s (inside the location's element: s may differ from loc.s as
@@ -60,10 +81,7 @@ public:
   }
 
 protected:
-  Body(std::string name, double length, PetscInt first) : name_(std::move(name)), length_(length), first_(first) {}
-  std::string name_;
-  double length_;
-  PetscInt first_;
+  Body(std::string name, double length, PetscInt first) : BodyBase(std::move(name), length, first) {}
 };
 
 } // namespace boomdyn

@@ -16,6 +16,7 @@
 namespace boomdyn {
 
 using Vec2d = std::array<double, 2>;
+using Vec3d = std::array<double, 3>;
 
 // Where a value came from, for messages raised after parsing.
 struct SourceMark {
@@ -33,7 +34,7 @@ struct PointRef {
 struct ComponentSpec;
 // Numbers and integers are doubles; body and component names are strings;
 // nested maps (friction) are components of their own.
-using SpecValue = std::variant<double, std::string, Vec2d, TimeFunction, std::shared_ptr<const ComponentSpec>>;
+using SpecValue = std::variant<double, std::string, Vec2d, TimeFunction, std::shared_ptr<const ComponentSpec>, Vec3d>;
 
 struct ComponentSpec {
   ComponentSpec() = default;
@@ -61,6 +62,7 @@ struct ComponentSpec {
   int integer(const std::string &key) const;
   const std::string &text(const std::string &key) const;
   Vec2d vec2(const std::string &key) const;
+  Vec3d vec3(const std::string &key) const;
   const TimeFunction &function(const std::string &key) const;
   const ComponentSpec &map(const std::string &key) const;
   // The material point named by a body key and a material coordinate key.

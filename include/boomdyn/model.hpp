@@ -56,8 +56,10 @@ public:
   PetscInt numMultipliers() const { return nlambda_; }
   PetscInt size() const { return nq_ + nlambda_; }
 
-  const std::vector<std::unique_ptr<Body>> &bodies() const { return bodies_; }
-  const Body *findBody(const std::string &name) const;
+  // Planar scenes hold planar bodies (Body), spatial scenes spatial ones
+  // (SpatialBody); BodyBase::dimension() tells which.
+  const std::vector<std::unique_ptr<BodyBase>> &bodies() const { return bodies_; }
+  const BodyBase *findBody(const std::string &name) const;
   const std::vector<std::unique_ptr<WorkItem>> &items() const { return items_; }
   const std::vector<const ConstraintItem *> &constraints() const { return constraints_; }
   // Some item damps the motion physically (WorkItem::physicalDamping): the
@@ -95,6 +97,8 @@ public:
   const Scene &scene() const { return scene_; }
   // Initial coordinates (undeformed bodies as placed in the scene), size nq.
   std::vector<double> initialCoordinates() const;
+  // Initial velocities, size nq (zero but for spatial bodies given a velocity).
+  std::vector<double> initialVelocities() const;
 
   // Conditioning of the Newton iteration matrix M/(beta h^2) + K of a dynamic
   // run, estimated per flexible body (its type's elementOmegaMax2) from its
@@ -130,10 +134,14 @@ private:
   friend class ModelBuilder; // the physics types build the Model through it
   friend class BodyBuilder;  // and the body types
   void checkInitialConfiguration() const;
+  double spatialEnergyScale(double mass) const;
 
   Scene scene_;
   PetscInt nq_ = 0, nlambda_ = 0;
-  std::vector<std::unique_ptr<Body>> bodies_;
+  std::vector<std::unique_ptr<BodyBase>> bodies_;
+  // Constraints that bodies bring along (the normalization row of a spatial
+  // rigid body's Euler parameters), added before the components' constraints.
+  std::vector<std::pair<std::shared_ptr<Constraint>, SourceMark>> bodyConstraints_;
   std::vector<std::unique_ptr<WorkItem>> items_;
   std::vector<const ConstraintItem *> constraints_;
   std::vector<SourceMark> constraintMarks_;

@@ -6,6 +6,7 @@
 #pragma once
 
 #include "boomdyn/model.hpp"
+#include "boomdyn/spatial_body.hpp"
 
 #include <map>
 #include <memory>
@@ -23,16 +24,25 @@ public:
   explicit BodyBuilder(Model &model) : model_(model) {}
 
   Vec2 gravity() const { return Vec2(model_.scene_.gravity[0], model_.scene_.gravity[1]); }
+  // Spatial scenes: gravity [gx, gy, gz].
+  Vec3 gravity3() const { return Vec3(model_.scene_.gravity3[0], model_.scene_.gravity3[1], model_.scene_.gravity3[2]); }
   // The index of the new body's first coordinate.
   PetscInt firstCoordinate() const { return model_.nq_; }
   // Takes the body built on firstCoordinate() and numbers its coordinates.
-  const Body &addBody(std::unique_ptr<Body> body)
+  template <typename B> const B &addBody(std::unique_ptr<B> body)
   {
     model_.nq_ += body->numCoordinates();
+    const B &added = *body;
     model_.bodies_.push_back(std::move(body));
-    return *model_.bodies_.back();
+    return added;
   }
   void addItem(std::unique_ptr<WorkItem> item) { model_.items_.push_back(std::move(item)); }
+  // A constraint the body brings along (a spatial rigid body's Euler
+  // parameter normalization); its rows precede those of the components.
+  void addConstraint(std::shared_ptr<Constraint> c, const SourceMark &mark)
+  {
+    model_.bodyConstraints_.emplace_back(std::move(c), mark);
+  }
 
 private:
   Model &model_;
@@ -50,9 +60,13 @@ public:
 
   const Scene &scene() const { return model_.scene_; }
   Vec2 gravity() const { return Vec2(model_.scene_.gravity[0], model_.scene_.gravity[1]); }
+  Vec3 gravity3() const { return Vec3(model_.scene_.gravity3[0], model_.scene_.gravity3[1], model_.scene_.gravity3[2]); }
   double totalMass() const { return model_.totalMass(); } // Model::totalMass
-  // Throws ModelError for an unknown name (the reader has checked names).
-  const Body &body(const std::string &name) const { return *model_.findBody(name); }
+  // Throws ModelError for an unknown name (the reader has checked names)
+  // and for a body of the other dimension (types are registered per
+  // dimension, so the reader never lets that happen).
+  const Body &body(const std::string &name) const { return ofDimension<Body>(name, 2); }
+  const SpatialBody &spatialBody(const std::string &name) const { return ofDimension<SpatialBody>(name, 3); }
   // Initial coordinates of the bodies (undeformed, as placed).
   const std::vector<double> &bodyCoordinates() const { return q0_; }
 
@@ -88,6 +102,15 @@ public:
   }
 
 private:
+  template <typename B> const B &ofDimension(const std::string &name, int dimension) const
+  {
+    const BodyBase *b = model_.findBody(name);
+    if (b->dimension() != dimension)
+      throw ModelError("body '" + name + "' is " + (dimension == 2 ? "spatial" : "planar") + " but a " +
+                       (dimension == 2 ? "planar" : "spatial") + " type refers to it");
+    return static_cast<const B &>(*b);
+  }
+
   Model &model_;
   std::vector<double> q0_;
   std::map<std::string, std::map<std::string, double>> scratch_;

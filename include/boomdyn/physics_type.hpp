@@ -31,6 +31,10 @@ struct SpecIssue {
 
 struct PhysicsType {
   TypeSchema schema;
+  // The scenes the type belongs to: 2 planar, 3 spatial (the scene's
+  // `dimension`). A type name may exist in both (a planar and a spatial
+  // `clamp`): the registry is looked up by (section, type, dimension).
+  int dimension = 2;
   // Derived defaults that need the rest of the scene (a clamp's ground point
   // is where its body starts). Fills only absent keys.
   void (*complete)(ComponentSpec &spec, const Scene &scene) = nullptr;
@@ -62,6 +66,8 @@ struct PhysicsType {
 // checked that it exists), and where a material point starts.
 const BodySpec &bodySpec(const Scene &scene, const std::string &name);
 Vec2d initialPoint(const Scene &scene, const PointRef &point);
+// The same in a spatial scene: origin + s axis/|axis|.
+Vec3d initialPoint3(const Scene &scene, const PointRef &point);
 
 // Keys shared by many types: a material point named by a body and a
 // material coordinate on it.
@@ -71,10 +77,10 @@ KeySchema atKey(const std::string &key, const std::string &body, const std::stri
 // Every registered type, in registration order (the order of `type:`
 // choices in messages and of the tables in docs/scenes.md).
 const std::vector<PhysicsType> &physicsTypes();
-// The types of one section, in registration order.
-std::vector<const PhysicsType *> physicsTypesOf(const std::string &section);
-// nullptr if the section has no such type.
-const PhysicsType *findPhysicsType(const std::string &section, const std::string &type);
+// The types of one section and dimension, in registration order.
+std::vector<const PhysicsType *> physicsTypesOf(const std::string &section, int dimension = 2);
+// nullptr if the section has no such type in that dimension.
+const PhysicsType *findPhysicsType(const std::string &section, const std::string &type, int dimension = 2);
 // The body type of a body (section "bodies"); every BodySpec::Type has one.
 const PhysicsType &bodyType(BodySpec::Type kind);
 

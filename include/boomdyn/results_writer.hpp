@@ -10,6 +10,7 @@
 #include "boomdyn/petsc_handle.hpp"
 #include "boomdyn/rope_polylines.hpp"
 #include "boomdyn/sensors.hpp"
+#include "boomdyn/spatial_body.hpp"
 #include "boomdyn/stick_slip.hpp"
 
 #include <petscvec.h>
@@ -77,6 +78,7 @@ private:
   // ParaView: booms sampled inside the elements at each state snapshot (rank 0),
   // and the XDMF file beside the results that describes them.
   void writeSampledBooms(double t, const std::vector<double> &q, const std::vector<double> &v);
+  void writeSpatialBody(const SpatialBody &body, const std::vector<double> &q, const std::vector<double> &v);
   void writeXdmf() const;
   void appendStepRow(double t, double dt, PetscInt iterations, double violation, const EnergyParts &e,
                      const std::vector<SensorReading> &sensors);

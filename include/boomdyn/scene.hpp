@@ -33,7 +33,7 @@ struct SectionSpec {
 // before the Model is built from it by the same type. Type selects the
 // registered body type (bodyType() in physics_type.hpp).
 struct BodySpec {
-  enum class Type { AncfBeam, Rigid };
+  enum class Type { AncfBeam, Rigid, SpatialRigid };
   std::string name;
   Type type = Type::AncfBeam;
   double length = 0;  // m
@@ -42,6 +42,19 @@ struct BodySpec {
   double angle = 0;   // initial direction of the axis, rad (counter-clockwise from x)
   SectionSpec section; // in the stiffness form, whichever form the scene used
   SourceMark mark;
+  // Spatial scenes (dimension 3): origin3 is the position of s = 0; the
+  // body axes are x along `axis` (the direction of s), y along the part of
+  // `up` normal to it, z = x cross y. Mass properties of rigid bodies:
+  // mass, the inertia tensor about the centre of mass in body axes
+  // (inertia = [Jxx, Jyy, Jzz], products = [Jxy, Jyz, Jzx]) and the
+  // centre of mass in body axes from the point s = 0.
+  Vec3d origin3{0, 0, 0};
+  Vec3d axis{1, 0, 0}, up{0, 1, 0};
+  double mass = 0;
+  Vec3d inertia{0, 0, 0}, products{0, 0, 0};
+  Vec3d centerOfMass{0, 0, 0};
+  // Initial velocity of the point s = 0 and angular velocity (global axes).
+  Vec3d velocity{0, 0, 0}, angularVelocity{0, 0, 0};
 };
 
 struct DynamicSpec {
@@ -93,7 +106,10 @@ struct Scene {
   std::string description;
   enum class Analysis { Static, Dynamic, Modal };
   Analysis analysis = Analysis::Dynamic;
-  Vec2d gravity{0, 0}; // m/s^2
+  // 2: a planar scene (the default), 3: a spatial scene (key `dimension`).
+  int dimension = 2;
+  Vec2d gravity{0, 0}; // m/s^2 (planar scenes)
+  Vec3d gravity3{0, 0, 0}; // m/s^2; planar scenes: [gx, gy, 0]
   std::vector<BodySpec> bodies;
   // Components of the registered physics types (physics_type.hpp), by
   // section, in file order.

@@ -19,6 +19,7 @@ enum class ValueKind {
   Integer,            // a whole number (8, 8.0 or 1e6)
   Name,               // letters, digits, '_', '-', '.'
   Vec2,               // [x, y]
+  Vec3,               // [x, y, z] (spatial scenes)
   TimeFunction,       // a number or a time function map {type: ...}
   AngleFunction,      // a TimeFunction in degrees (stored in radians)
   Body,               // the name of a body

@@ -102,7 +102,7 @@ private:
   Model model_;
   Assembler assembler_;
   SensorProbe sensors_;
-  PetscHandle<Vec> x_, zero_;
+  PetscHandle<Vec> x_, zero_, v0_; // v0_: the initial velocities (zero but for spatial bodies given one)
   std::unique_ptr<GeneralizedAlpha> integrator_;
   std::unique_ptr<StaticSolver> statics_;
   std::vector<std::unique_ptr<Monitor>> monitors_;

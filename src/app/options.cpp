@@ -1,6 +1,7 @@
 #include "options.hpp"
 
 #include "boomdyn/schema.hpp"
+#include "boomdyn/spatial_embedding.hpp"
 
 #include <cerrno>
 #include <cmath>
@@ -217,6 +218,12 @@ PetscErrorCode readSceneOverrides(PetscOptionItems *PetscOptionsObject, Scene *s
                          &set->loadSteps));
   scene->modal.count = static_cast<int>(count);
   scene->statics.load_steps = static_cast<int>(steps);
+  bool spatial = false;
+  PetscCall(optionBool(PetscOptionsObject, "-boom_spatial",
+                       "Run a planar scene as a spatial model in its plane (rigid bodies, pins, clamps, angle drives, "
+                       "point forces and masses)",
+                       &spatial));
+  if (spatial) PetscCallCXX(*scene = spatialEmbedding(*scene));
   PetscFunctionReturn(0);
 }
 

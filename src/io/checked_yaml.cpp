@@ -270,6 +270,16 @@ Vec2d CheckedYaml::vec2(const Field &f) const
   return {number(items[0]), number(items[1])};
 }
 
+Vec3d CheckedYaml::vec3(const Field &f) const
+{
+  if (!f.node.IsSequence() || f.node.size() != 3)
+    report_.fail(f, "expected a list of three numbers [x, y, z] (the scene is spatial: dimension 3), got " +
+                        (f.node.IsSequence() ? "a list of " + std::to_string(f.node.size())
+                                             : describeNode(f.node)));
+  const auto items = list(f);
+  return {number(items[0]), number(items[1]), number(items[2])};
+}
+
 // --- time functions --------------------------------------------------
 // A plain number is a constant; otherwise a map with a 'type'.
 TimeFunction CheckedYaml::timeFunction(const Field &f) const

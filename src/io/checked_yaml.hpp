@@ -154,6 +154,7 @@ public:
   std::vector<Field> list(const Field &f) const;
   std::vector<double> numbers(const Field &f) const;
   Vec2d vec2(const Field &f) const;
+  Vec3d vec3(const Field &f) const;
   // --- time functions --------------------------------------------------
   // A plain number is a constant; otherwise a map with a 'type'.
   TimeFunction timeFunction(const Field &f) const;

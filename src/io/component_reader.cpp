@@ -67,6 +67,10 @@ void readComponents(const Reporter &report, const MapView &parent, const std::st
   const ComponentReader reader(report);
   const auto field = parent.get(key);
   if (!field) return;
+  if (physicsTypesOf(section, scene.dimension).empty())
+    report.fail(*field, std::string("not available in a ") + (scene.dimension == 3 ? "spatial" : "planar") +
+                            " scene (dimension: " + std::to_string(scene.dimension) + "): no type of section " +
+                            section + " is registered for it");
   std::map<std::string, std::string> taken;
   const auto items = reader.list(*field);
   for (std::size_t i = 0; i < items.size(); ++i) {
@@ -83,7 +87,7 @@ void readBodies(const Reporter &report, const std::vector<Field> &items, Scene &
   for (std::size_t i = 0; i < items.size(); ++i) {
     const ComponentSpec spec = reader.parseComponent(items[i], i, "bodies", scene, taken);
     BodySpec body;
-    findPhysicsType("bodies", spec.type)->describeBody(spec, body);
+    findPhysicsType("bodies", spec.type, scene.dimension)->describeBody(spec, body);
     scene.bodies.push_back(std::move(body));
   }
 }
@@ -106,24 +110,54 @@ std::size_t ComponentReader::chooseForm(const MapView &m, const TypeSchema &sche
 ComponentSpec ComponentReader::parseComponent(const Field &f, std::size_t index, const std::string &section,
                                           const Scene &scene, std::map<std::string, std::string> &taken) const
 {
-  const std::vector<const PhysicsType *> types = physicsTypesOf(section);
+  const std::vector<const PhysicsType *> types = physicsTypesOf(section, scene.dimension);
+  // The types of the section in the other dimension: their keys and names
+  // get "only allowed in a spatial scene" rather than "unknown".
+  const int otherDimension = scene.dimension == 3 ? 2 : 3;
+  const std::vector<const PhysicsType *> others = physicsTypesOf(section, otherDimension);
   // Every key of every type of the section is known here, so that a key of
   // a sibling type gets "only allowed for ..." rather than "unknown key".
   std::vector<std::string> allowed{"name"}, typeNames;
   if (hasTypeKey(section)) allowed.insert(isBodies(section) ? allowed.end() : allowed.begin(), "type");
-  for (const PhysicsType *t : types) {
-    typeNames.push_back(t->schema.type);
-    for (const KeySchema &k : t->schema.keys)
-      if (std::find(allowed.begin(), allowed.end(), k.key) == allowed.end()) allowed.push_back(k.key);
-  }
+  for (const PhysicsType *t : types) typeNames.push_back(t->schema.type);
+  for (const auto *group : {&types, &others})
+    for (const PhysicsType *t : *group)
+      for (const KeySchema &k : t->schema.keys)
+        if (std::find(allowed.begin(), allowed.end(), k.key) == allowed.end()) allowed.push_back(k.key);
   const MapView m(report_, f, allowed);
   if (isBodies(section)) m.require("name");
+  const std::string inOther = otherDimension == 3 ? "only allowed in a spatial scene (top-level key 'dimension: 3')"
+                                                  : "not allowed in a spatial scene (dimension: 3)";
+  // A planar scene's key that only spatial types take is still an unknown
+  // key here (the user may have meant something else), with the hint.
+  const std::string keyInOther =
+      otherDimension == 3 ? "unknown key in a planar scene (spatial scenes, top-level key 'dimension: 3', take it)"
+                          : inOther;
+  auto chooseType = [&](const Field &t) {
+    if (t.node.IsScalar() && std::find(typeNames.begin(), typeNames.end(), t.node.Scalar()) == typeNames.end())
+      for (const PhysicsType *o : others)
+        if (o->schema.type == t.node.Scalar())
+          report_.fail(t, "type '" + o->schema.type + "' is " + inOther + "; here use one of " + join(typeNames));
+    return types[choice(t, typeNames)];
+  };
   const PhysicsType *type = types.at(0);
   if (isBodies(section)) {
-    if (const auto t = m.get("type")) type = types[choice(*t, typeNames)];
+    if (const auto t = m.get("type")) type = chooseType(*t);
   } else if (hasTypeKey(section)) {
-    type = types[choice(m.require("type", " (one of " + join(typeNames) + ")"), typeNames)];
+    type = chooseType(m.require("type", " (one of " + join(typeNames) + ")"));
   }
+  // Keys that only types of the other dimension take (a spatial body's
+  // 'axis' in a planar scene), unless a sibling or a rule of the type
+  // itself says more.
+  for (const PhysicsType *o : others)
+    for (const KeySchema &k : o->schema.keys) {
+      if (!m.has(k.key) || type->schema.find(k.key)) continue;
+      bool explained = false;
+      for (const PhysicsType *t : types) explained = explained || t->schema.find(k.key);
+      for (const KeyRule &rule : type->schema.rules)
+        explained = explained || (rule.key == k.key && rule.when == KeyRule::When::Always);
+      if (!explained) m.forbid(k.key, keyInOther);
+    }
   ComponentSpec spec;
   spec.type = type->schema.type;
   spec.mark = report_.sourceMark(f);
@@ -207,7 +241,13 @@ void ComponentReader::readValue(const Field &f, const KeySchema &k, const std::s
     spec.set(k.key, name(f));
     return;
   case ValueKind::Vec2:
+    if (scene.dimension == 2 && f.node.IsSequence() && f.node.size() == 3)
+      report_.fail(f, "expected a list of two numbers [x, y], got a list of 3 (a spatial scene needs the top-level "
+                      "key 'dimension: 3')");
     spec.set(k.key, vec2(f));
+    return;
+  case ValueKind::Vec3:
+    spec.set(k.key, vec3(f));
     return;
   case ValueKind::TimeFunction:
     spec.set(k.key, timeFunction(f));

@@ -306,8 +306,13 @@ void ResultsWriter::writeSampledBooms(double t, const std::vector<double> &q, co
                       &curvature = sampleCurvature_;
   std::vector<int> &segments = sampleSegments_;
   points.clear(), velocity.clear(), strain.clear(), curvature.clear(), segments.clear();
-  for (const auto &body : model_.bodies()) {
-    const auto *beam = dynamic_cast<const AncfBeam *>(body.get());
+  for (const auto &base : model_.bodies()) {
+    if (base->dimension() == 3) {
+      writeSpatialBody(static_cast<const SpatialBody &>(*base), q, v);
+      continue;
+    }
+    const Body *body = static_cast<const Body *>(base.get());
+    const auto *beam = dynamic_cast<const AncfBeam *>(body);
     const int elements = beam ? beam->numElements() : 1, perElement = beam ? kSamplesPerElement : 1;
     const int n = elements * perElement + 1;
     const int first = static_cast<int>(points.size() / 3);
@@ -345,6 +350,26 @@ void ResultsWriter::writeSampledBooms(double t, const std::vector<double> &q, co
   ropePoints_ = ropePoints.size() / 3, ropeSegments_ = ropeSegments.size() / 2;
   snapshotTimes_.push_back(t);
   sampledPoints_ = np, sampledSegments_ = ns;
+}
+
+// A spatial body sampled like a beam: 3-D points along its axis, their
+// velocities, and the axial strain |r'| - 1 and curvature left at 0 (rigid
+// bodies; spatial beams will give theirs).
+void ResultsWriter::writeSpatialBody(const SpatialBody &body, const std::vector<double> &q, const std::vector<double> &v)
+{
+  const int n = 2, first = static_cast<int>(samplePoints_.size() / 3);
+  for (int k = 0; k < n; ++k) {
+    const double s = body.length() * k / (n - 1);
+    const SpatialLocation loc = body.locate(s);
+    double vals[kSpatialMaxDofs], vels[kSpatialMaxDofs];
+    for (int i = 0; i < loc.count; ++i) vals[i] = q[loc.dofs[i]], vels[i] = v[loc.dofs[i]];
+    SpatialSample p;
+    body.sample(loc, s, vals, p);
+    const Vec3 vel = p.r_q.leftCols(loc.count) * Eigen::Map<const Eigen::VectorXd>(vels, loc.count);
+    for (int i = 0; i < 3; ++i) samplePoints_.push_back(p.r[i]), sampleVelocity_.push_back(vel[i]);
+    sampleStrain_.push_back(0.0), sampleCurvature_.push_back(0.0);
+    if (k > 0) sampleSegments_.push_back(first + k - 1), sampleSegments_.push_back(first + k);
+  }
 }
 
 void ResultsWriter::writeXdmf() const

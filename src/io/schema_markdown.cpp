@@ -47,6 +47,8 @@ std::string kindText(const KeySchema &k)
     return "name";
   case ValueKind::Vec2:
     return "[x, y]";
+  case ValueKind::Vec3:
+    return "[x, y, z]";
   case ValueKind::TimeFunction:
     return "[time function](#time-functions)";
   case ValueKind::AngleFunction:
@@ -86,13 +88,13 @@ std::string sectionNoun(const std::string &section)
   return section.substr(section.find('.') == std::string::npos ? 0 : section.find('.') + 1);
 }
 
-void table(std::ostream &out, const TypeSchema &s, bool typeKey, bool nameKey)
+void table(std::ostream &out, const TypeSchema &s, bool typeKey, bool nameKey, int dimension = 2)
 {
   out << "| key | required | kind | unit | default | limits | meaning |\n";
   out << "| --- | --- | --- | --- | --- | --- | --- |\n";
   // Bodies: `type` may be left out (the first body type), `name` may not.
   const bool bodies = s.section == "bodies";
-  const PhysicsType *defaultBody = bodies ? physicsTypesOf("bodies").at(0) : nullptr;
+  const PhysicsType *defaultBody = bodies ? physicsTypesOf("bodies", dimension).at(0) : nullptr;
   if (typeKey)
     out << "| `type` | " << (bodies && defaultBody->schema.type != s.type ? "yes" : "no") << " | " << code(s.type)
         << " | | " << (bodies ? code(defaultBody->schema.type) : "") << " | | selects this table |\n";
@@ -121,11 +123,15 @@ std::string schemaMarkdown(const std::string &section)
   std::ostringstream out;
   const bool typeKey = section == "bodies" || section == "constraints" || section == "loads";
   bool first = true;
-  for (const PhysicsType *t : physicsTypesOf(section)) {
+  // Planar types first, then the spatial ones (scenes with `dimension: 3`).
+  std::vector<const PhysicsType *> types = physicsTypesOf(section, 2), spatial = physicsTypesOf(section, 3);
+  types.insert(types.end(), spatial.begin(), spatial.end());
+  for (const PhysicsType *t : types) {
     const TypeSchema &s = t->schema;
-    out << (first ? "" : "\n") << "#### " << code(s.type) << "\n\n" << s.summary << "\n\n";
+    out << (first ? "" : "\n") << "#### " << code(s.type) << (t->dimension == 3 ? " (spatial scenes)" : "") << "\n\n"
+        << s.summary << "\n\n";
     first = false;
-    table(out, s, typeKey, true);
+    table(out, s, typeKey, true, t->dimension);
     for (const KeySchema &k : s.keys)
       if ((k.kind == ValueKind::Map || k.kind == ValueKind::MapList) && k.nested) {
         out << "\n" << code(s.type) << "." << code(k.key) << ": " << k.nested->summary << "\n\n";

@@ -616,6 +616,20 @@ PetscErrorCode Assembler::initialState(Vec x) const
   PetscFunctionReturn(0);
 }
 
+PetscErrorCode Assembler::initialVelocity(Vec v) const
+{
+  PetscInt lo, hi;
+  PetscScalar *a;
+  PetscFunctionBeginUser;
+  const std::vector<double> v0 = model_.initialVelocities();
+  PetscCall(VecSet(v, 0.0));
+  PetscCall(VecGetOwnershipRange(v, &lo, &hi));
+  PetscCall(VecGetArray(v, &a));
+  for (PetscInt i = lo; i < std::min<PetscInt>(hi, model_.numCoordinates()); ++i) a[i - lo] = v0[i];
+  PetscCall(VecRestoreArray(v, &a));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode Assembler::copyMultipliers(Vec src, Vec dst, PetscReal scale) const
 {
   PetscInt lo, hi;

@@ -30,6 +30,7 @@ const std::string &ComponentSpec::text(const std::string &key) const
 }
 
 Vec2d ComponentSpec::vec2(const std::string &key) const { return valueOf<Vec2d>(*this, key, "a vector"); }
+Vec3d ComponentSpec::vec3(const std::string &key) const { return valueOf<Vec3d>(*this, key, "a 3-vector"); }
 
 const TimeFunction &ComponentSpec::function(const std::string &key) const
 {

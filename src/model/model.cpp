@@ -34,14 +34,18 @@ Model::Model(const Scene &scene) : scene_(scene)
   // rows] and each group in scene order.
   ModelBuilder builder(*this);
   using Stage = void (*PhysicsType::*)(const ComponentSpec &, ModelBuilder &);
-  for (const Stage stage : {&PhysicsType::addCoordinates, &PhysicsType::addStates, &PhysicsType::build})
+  for (const Stage stage : {&PhysicsType::addCoordinates, &PhysicsType::addStates, &PhysicsType::build}) {
+    // The bodies' own constraints get the first multiplier rows.
+    if (stage == &PhysicsType::build)
+      for (auto &[constraint, mark] : bodyConstraints_) builder.addConstraint(constraint, mark);
     for (const std::string &section : Scene::componentSections())
       for (ComponentSpec &spec : scene_.components(section)) {
-        const PhysicsType *type = findPhysicsType(section, spec.type);
+        const PhysicsType *type = findPhysicsType(section, spec.type, scene_.dimension);
         if (!type) throw ModelError(where(spec.mark) + "no type '" + spec.type + "' in section " + section);
         if (stage == &PhysicsType::addCoordinates && type->complete) type->complete(spec, scene_);
         if (type->*stage) (type->*stage)(spec, builder);
       }
+  }
   checkInitialConfiguration();
 }
 
@@ -94,7 +98,7 @@ const PadContact *ModelBuilder::addPad(std::unique_ptr<PadContact> pad)
   return added;
 }
 
-const Body *Model::findBody(const std::string &name) const
+const BodyBase *Model::findBody(const std::string &name) const
 {
   for (const auto &b : bodies_)
     if (b->name() == name) return b.get();
@@ -104,7 +108,7 @@ const Body *Model::findBody(const std::string &name) const
 double Model::totalMass() const
 {
   double mass = 0;
-  for (const BodySpec &b : scene_.bodies) mass += b.section.rhoA * b.length;
+  for (const BodySpec &b : scene_.bodies) mass += b.type == BodySpec::Type::SpatialRigid ? b.mass : b.section.rhoA * b.length;
   for (const ComponentSpec &m : scene_.masses)
     if (m.has("mass")) mass += m.number("mass");
   return mass;
@@ -115,6 +119,7 @@ double Model::energyScale() const
   const double mass = totalMass();
   double lo[2] = {0, 0}, hi[2] = {0, 0}, longest = 0;
   bool first = true;
+  if (scene_.dimension == 3) return spatialEnergyScale(mass);
   for (const BodySpec &b : scene_.bodies) {
     longest = std::max(longest, b.length);
     const double end[2] = {b.origin[0] + b.length * std::cos(b.angle), b.origin[1] + b.length * std::sin(b.angle)};
@@ -130,12 +135,43 @@ double Model::energyScale() const
   return std::isfinite(scale) ? scale : 0.0;
 }
 
+double Model::spatialEnergyScale(double mass) const
+{
+  // As energyScale, with the bodies' ends in space.
+  double lo[3] = {0, 0, 0}, hi[3] = {0, 0, 0}, longest = 0;
+  bool first = true;
+  for (const BodySpec &b : scene_.bodies) {
+    longest = std::max(longest, b.length);
+    const double n = std::sqrt(b.axis[0] * b.axis[0] + b.axis[1] * b.axis[1] + b.axis[2] * b.axis[2]);
+    for (int i = 0; i < 3; ++i) {
+      const double end = b.origin3[i] + (n > 0 ? b.length * b.axis[i] / n : 0.0);
+      const double a = std::min(b.origin3[i], end), z = std::max(b.origin3[i], end);
+      lo[i] = first ? a : std::min(lo[i], a), hi[i] = first ? z : std::max(hi[i], z);
+    }
+    first = false;
+  }
+  const double L = std::max(std::sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) +
+                                      (hi[2] - lo[2]) * (hi[2] - lo[2])),
+                            longest);
+  const auto &g = scene_.gravity3;
+  const double gn = std::sqrt(g[0] * g[0] + g[1] * g[1] + g[2] * g[2]), T = scene_.dynamic.t_end;
+  const double scale = mass * (gn * L + (T > 0 ? (L / T) * (L / T) : 0.0));
+  return std::isfinite(scale) ? scale : 0.0;
+}
+
 std::vector<double> Model::initialCoordinates() const
 {
   std::vector<double> q(nq_);
   for (const auto &b : bodies_) b->initialCoordinates(q.data() + b->firstCoordinate());
   for (const auto &[index, s0] : slackInitial_) q[index] = s0;
   return q;
+}
+
+std::vector<double> Model::initialVelocities() const
+{
+  std::vector<double> v(nq_, 0.0);
+  for (const auto &b : bodies_) b->initialVelocities(v.data() + b->firstCoordinate());
+  return v;
 }
 
 std::vector<Model::Conditioning> Model::iterationConditioning() const
@@ -190,7 +226,8 @@ std::vector<std::string> Model::conditioningWarnings() const
 
 void Model::checkInitialConfiguration() const
 {
-  const std::vector<double> q = initialCoordinates();
+  const std::vector<double> q = initialCoordinates(), v0 = initialVelocities();
+  const bool moving = std::any_of(v0.begin(), v0.end(), [](double x) { return x != 0.0; });
   for (std::size_t k = 0; k < constraints_.size(); ++k) {
     const Constraint &c = constraints_[k]->constraint();
     std::vector<PetscInt> dofs;
@@ -205,6 +242,20 @@ void Model::checkInitialConfiguration() const
         os << where(constraintMarks_[k]) << "constraint '" << c.name() << "' is violated by the initial configuration ("
            << "row " << r << ": " << ev.C[r] << " " << c.rowUnit(r)
            << "); place the bodies (origin, angle) so that it holds at t = 0";
+        throw ModelError(os.str());
+      }
+    // Bodies given initial velocities: those must satisfy C_q v + C_t = 0
+    // (a drive's C_t is projected at the start; the other rows are not).
+    if (!moving || c.dependsOnTime()) continue;
+    std::vector<double> vv(dofs.size());
+    for (std::size_t i = 0; i < dofs.size(); ++i) vv[i] = v0[dofs[i]];
+    const Eigen::VectorXd rate = ev.Cq * Eigen::Map<const Eigen::VectorXd>(vv.data(), static_cast<int>(vv.size()));
+    for (int r = 0; r < c.numRows(); ++r)
+      if (std::abs(rate[r]) > 1e-9) {
+        std::ostringstream os;
+        os << where(constraintMarks_[k]) << "constraint '" << c.name() << "' is violated by the initial velocities ("
+           << "row " << r << ": dC/dt = " << rate[r] << " " << c.rowUnit(r)
+           << "/s); give the bodies velocities the joints allow (velocity, angular_velocity)";
         throw ModelError(os.str());
       }
   }

@@ -24,7 +24,15 @@
   X(pointMassType) \
   X(springType) \
   X(pointSensorType) \
-  X(frameSensorType)
+  X(frameSensorType) \
+  X(spatialRigidBodyType) \
+  X(sphericalJointType) \
+  X(revoluteJointType) \
+  X(spatialClampType) \
+  X(spatialAngleDriveType) \
+  X(spatialPointForceType) \
+  X(spatialPointMomentType) \
+  X(spatialPointMassType)
 
 namespace boomdyn {
 
@@ -53,6 +61,16 @@ Vec2d initialPoint(const Scene &scene, const PointRef &point)
   return {b.origin[0] + point.s * std::cos(b.angle), b.origin[1] + point.s * std::sin(b.angle)};
 }
 
+Vec3d initialPoint3(const Scene &scene, const PointRef &point)
+{
+  const BodySpec &b = bodySpec(scene, point.body);
+  const double n = std::sqrt(b.axis[0] * b.axis[0] + b.axis[1] * b.axis[1] + b.axis[2] * b.axis[2]);
+  Vec3d r = b.origin3;
+  if (n > 0)
+    for (int i = 0; i < 3; ++i) r[i] += point.s * b.axis[i] / n;
+  return r;
+}
+
 KeySchema bodyKey(const std::string &key, const std::string &help)
 {
   return boomdyn::key(key, ValueKind::Body, "", Need::Required, help);
@@ -63,25 +81,25 @@ KeySchema atKey(const std::string &key, const std::string &body, const std::stri
   return boomdyn::key(key, ValueKind::MaterialCoordinate, "m", Need::Required, help).onBody(body);
 }
 
-std::vector<const PhysicsType *> physicsTypesOf(const std::string &section)
+std::vector<const PhysicsType *> physicsTypesOf(const std::string &section, int dimension)
 {
   std::vector<const PhysicsType *> out;
   for (const PhysicsType &t : physicsTypes())
-    if (t.schema.section == section) out.push_back(&t);
+    if (t.schema.section == section && t.dimension == dimension) out.push_back(&t);
   return out;
 }
 
-const PhysicsType *findPhysicsType(const std::string &section, const std::string &type)
+const PhysicsType *findPhysicsType(const std::string &section, const std::string &type, int dimension)
 {
   for (const PhysicsType &t : physicsTypes())
-    if (t.schema.section == section && t.schema.type == type) return &t;
+    if (t.schema.section == section && t.schema.type == type && t.dimension == dimension) return &t;
   return nullptr;
 }
 
 const PhysicsType &bodyType(BodySpec::Type kind)
 {
-  for (const PhysicsType *t : physicsTypesOf("bodies"))
-    if (t->bodyKind == kind) return *t;
+  for (const PhysicsType &t : physicsTypes())
+    if (t.schema.section == "bodies" && t.bodyKind == kind) return t;
   throw std::logic_error("no body type registered for BodySpec::Type " + std::to_string(static_cast<int>(kind)));
 }
 

@@ -23,6 +23,8 @@ PetscErrorCode Simulation::setUp()
   PetscCall(assembler_.createVector(x_.address()));
   PetscCall(assembler_.createVector(zero_.address()));
   PetscCall(assembler_.initialState(x_));
+  PetscCall(assembler_.createVector(v0_.address()));
+  PetscCall(assembler_.initialVelocity(v0_));
   PetscCall(sensors_.setUp(x_));
   // Meshes too fine for the step in double precision (reported even in quiet runs).
   conditioning_ = model_.conditioningWarnings();

@@ -21,7 +21,7 @@ FOLDER_LAYERS = {
 }
 # Plain data and contracts that everything may use.
 CORE = {"time_function", "scene", "work_item", "component_spec", "type_schema", "output_channel", "type_event",
-        "gather", "lanes", "log_events", "petsc_handle", "body", "constraint", "vec2", "version"}
+        "gather", "lanes", "log_events", "petsc_handle", "body", "spatial_body", "constraint", "vec2", "version"}
 # Header-only concepts, by the layer they belong to.
 HEADER_LAYERS = {
     "schema": "core", "slack_drive": "physics", "physics_type": "model", "model_builder": "model",

@@ -508,3 +508,44 @@ dynamic: {t_end: 0.12, dt: 1.0e-3, rho_inf: 0.8}
                                  "rank-independence-pads.yaml");
   runOnAllRanksAndOne(scene, "pads");
 }
+
+// A spatial model (dimension 3): a tower welded to the ground, a boom on a
+// hinge at its top slewed by an angle drive, a link on a spherical joint at
+// the boom's tip with a mass of rotary inertia, fixed and follower loads:
+// every spatial kind of work item, spread over both ranks.
+TEST(RankIndependence, SpatialRunMatchesSingleRank)
+{
+  PetscMPIInt size;
+  MPI_Comm_size(PETSC_COMM_WORLD, &size);
+  if (size == 1) GTEST_SKIP() << "run under mpiexec -n 2 (CTest: mpi2.regression)";
+  const char *text = R"(
+name: spatial-rank-independence
+dimension: 3
+analysis: dynamic
+gravity: [0, 0, -9.81]
+bodies:
+  - {name: tower, type: rigid, length: 2.0, mass: 50, inertia: [1, 20, 20], axis: [0, 0, 1], up: [1, 0, 0]}
+  - {name: boom, type: rigid, length: 4.0, origin: [0, 0, 2], mass: 100, inertia: [5, 130, 133], products: [0, 0.5, 0]}
+  - {name: link, type: rigid, length: 1.0, origin: [4, 0, 2], axis: [0.3, 0.2, -1], mass: 10, inertia: [0.1, 1, 1]}
+constraints:
+  - {type: clamp, body: tower, at: start}
+  - {type: revolute_joint, body: boom, at: start, other: tower, other_at: end, axis: [0, 0, 1]}
+  - type: angle_drive
+    body: boom
+    at: start
+    other: tower
+    other_at: end
+    axis: [0, 0, 1]
+    angle: {type: accel_limited, t0: 0.02, from: 0, to: 20, speed: 40, accel: 400}
+  - {type: spherical_joint, body: link, at: start, other: boom, other_at: end}
+loads:
+  - {type: point_force, body: link, at: end, force: [0, 200, 0]}
+  - {type: point_force, body: link, at: 0.5, follower_force: [0, 0, -100]}
+  - {type: point_moment, body: link, at: 0.5, follower_moment: [5, 0, 0]}
+masses:
+  - {body: link, at: end, mass: 20, inertia: [0.1, 0.2, 0.3]}
+dynamic: {t_end: 0.2, dt: 1.0e-3, rho_inf: 0.8}
+)";
+  const Scene scene = parseScene(text, "spatial-rank-independence.yaml");
+  runOnAllRanksAndOne(scene, "spatial");
+}

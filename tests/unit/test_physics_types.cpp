@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <set>
+#include <tuple>
 
 using namespace boomdyn;
 
@@ -55,11 +56,12 @@ void checkSchema(const TypeSchema &s, const std::string &where)
 
 TEST(PhysicsTypes, EverySchemaIsCompleteAndTypesAreUniquePerSection)
 {
-  std::set<std::pair<std::string, std::string>> seen;
+  std::set<std::tuple<std::string, std::string, int>> seen;
   ASSERT_FALSE(physicsTypes().empty());
   for (const PhysicsType &t : physicsTypes()) {
     const std::string where = t.schema.section + "/" + t.schema.type;
-    EXPECT_TRUE(seen.insert({t.schema.section, t.schema.type}).second) << where << " registered twice";
+    EXPECT_TRUE(seen.insert({t.schema.section, t.schema.type, t.dimension}).second) << where << " registered twice";
+    EXPECT_TRUE(t.dimension == 2 || t.dimension == 3) << where;
     EXPECT_FALSE(t.schema.defaultName.empty()) << where;
     if (t.schema.section == "bodies") { // built from the typed view BodySpec
       EXPECT_NE(t.describeBody, nullptr) << where << ": no typed view";
@@ -70,7 +72,7 @@ TEST(PhysicsTypes, EverySchemaIsCompleteAndTypesAreUniquePerSection)
       EXPECT_NE(t.build, nullptr) << where << ": no builder";
     }
     checkSchema(t.schema, where);
-    EXPECT_EQ(findPhysicsType(t.schema.section, t.schema.type), &t);
+    EXPECT_EQ(findPhysicsType(t.schema.section, t.schema.type, t.dimension), &t);
   }
   EXPECT_EQ(findPhysicsType("constraints", "weld"), nullptr);
   EXPECT_EQ(findPhysicsType("loads", "pin"), nullptr); // types belong to one section

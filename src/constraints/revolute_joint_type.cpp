@@ -1,0 +1,86 @@
+// Type `revolute_joint` (section constraints, spatial scenes): a hinge. The
+// material point stays at a ground point or at a material point of another
+// body (3 rows) and the hinge axis, fixed in both, stays common (2 rows: the
+// axis in body a is normal to two directions across it fixed in body b or
+// the ground); the rotation about the axis is free (spatial_joint.hpp).
+#include "boomdyn/model_builder.hpp"
+#include "boomdyn/physics_type.hpp"
+#include "boomdyn/spatial_joint.hpp"
+
+namespace boomdyn {
+
+namespace {
+
+void completeRevolute(ComponentSpec &spec, const Scene &scene)
+{
+  if (!spec.has("other") && !spec.has("point")) spec.set("point", initialPoint3(scene, spec.point()));
+  if (!spec.has("axis")) spec.set("axis", Vec3d{0, 0, 1});
+}
+
+std::optional<SpecIssue> checkRevolute(const ComponentSpec &spec, const Scene &)
+{
+  const Vec3d a = spec.vec3("axis");
+  if (!(a[0] * a[0] + a[1] * a[1] + a[2] * a[2] > 0)) return SpecIssue{"axis", "must not be the zero vector"};
+  return std::nullopt;
+}
+
+void buildRevolute(const ComponentSpec &spec, ModelBuilder &b)
+{
+  const SpatialBody &body = b.spatialBody(spec.text("body"));
+  const double s = spec.number("at");
+  const SpatialEnd a = SpatialEnd::onBody(body, s);
+  const Vec3d ax = spec.vec3("axis");
+  const Vec3 axis = Vec3(ax[0], ax[1], ax[2]).normalized();
+  Vec3 n1, n2;
+  frameAcross(axis, body.initialTriad(s).col(0), n1, n2);
+  SpatialEnd other;
+  Mat3 Tb = Mat3::Identity(); // the axes the directions across are fixed in, at t = 0
+  if (spec.has("other")) {
+    const SpatialBody &ob = b.spatialBody(spec.text("other"));
+    other = SpatialEnd::onBody(ob, spec.number("other_at"));
+    Tb = ob.initialTriad(other.s);
+  } else {
+    const Vec3d p = spec.vec3("point");
+    other = SpatialEnd::ground(Vec3(p[0], p[1], p[2]));
+  }
+  const Vec3 u = body.initialTriad(s).transpose() * axis;
+  std::vector<SpatialDotRow> rows(2);
+  rows[0].u = rows[1].u = u;
+  rows[0].n1 = rows[1].n1 = Vec3::Zero();
+  rows[0].n2 = Tb.transpose() * n1;
+  rows[1].n2 = Tb.transpose() * n2;
+  b.addConstraint(std::make_shared<SpatialJoint>(spec.name, a, other, true, rows), spec.mark);
+}
+
+} // namespace
+
+PhysicsType revoluteJointType()
+{
+  PhysicsType t;
+  t.dimension = 3;
+  t.schema.section = "constraints";
+  t.schema.type = t.schema.defaultName = "revolute_joint";
+  t.schema.summary = "A hinge: a material point stays at a ground point, or at a material point of another body, "
+                     "and the bodies turn only about the common axis.";
+  t.schema.keys = {
+      bodyKey("body", "the hinged body"),
+      atKey("at", "body", "material point of the body on the hinge axis"),
+      key("other", ValueKind::Body, "", Need::Optional, "second body (hinge between two bodies)").unlike("body"),
+      atKey("other_at", "other", "material point of the second body").requiredWith("other"),
+      key("point", ValueKind::Vec3, "m", Need::Optional, "ground point [x, y, z] on the axis (hinge to ground)")
+          .derived("where the point starts"),
+      key("axis", ValueKind::Vec3, "", Need::Optional,
+          "direction of the hinge axis in the global axes at t = 0 (any length); it turns with the bodies")
+          .derived("[0, 0, 1]"),
+  };
+  t.schema.rules = {
+      forbidIfPresent("other", "point", "not allowed together with 'other' (the hinge joins two bodies)"),
+      forbidIfAbsent("other", "other_at", "only allowed together with 'other'"),
+  };
+  t.complete = completeRevolute;
+  t.check = checkRevolute;
+  t.build = buildRevolute;
+  return t;
+}
+
+} // namespace boomdyn
