@@ -39,9 +39,9 @@ PetscErrorCode Simulation::restore(RunState *state)
   PetscFunctionBeginUser;
   CheckpointReader in(comm_);
   PetscCall(in.read(options_.restartPath));
-  PetscCheck(in.sceneText() == scene_.text, comm_, PETSC_ERR_USER_INPUT,
+  PetscCheck(in.sceneText() == scene().text, comm_, PETSC_ERR_USER_INPUT,
              "restart file %s was written for another scene text than %s", options_.restartPath.c_str(),
-             scene_.file.c_str());
+             scene().file.c_str());
   // The options that change the equations or the sequence of steps must be
   // those of the run that wrote the checkpoint (docs/reliability.md lists
   // them; older checkpoints do not hold the later ones). Options that only
@@ -55,12 +55,12 @@ PetscErrorCode Simulation::restore(RunState *state)
     const char *const *names; // the option's words by value, or null for a number
   };
   std::vector<Defining> defining = {
-      {"option_dt", "-ts_dt (dynamic.dt)", scene_.dynamic.dt, nullptr},
-      {"option_rho_inf", "-boom_rho_inf (dynamic.rho_inf)", scene_.dynamic.rho_inf, nullptr},
+      {"option_dt", "-ts_dt (dynamic.dt)", scene().dynamic.dt, nullptr},
+      {"option_rho_inf", "-boom_rho_inf (dynamic.rho_inf)", scene().dynamic.rho_inf, nullptr},
       {"option_adaptive_tol", "-boom_adaptive_tol", options_.adaptiveTolerance, nullptr},
       {"option_kink_restart", "-boom_kink_restart", options_.kinkRestart ? 1.0 : 0.0, nullptr},
       {"option_filtered_start", "-boom_filtered_start", options_.filteredStart ? 1.0 : 0.0, nullptr}};
-  for (const BodySpec &b : scene_.bodies)
+  for (const BodySpec &b : scene().bodies)
     if (b.type == BodySpec::Type::AncfBeam) {
       defining.push_back({"option_elements_" + b.name, "-boom_elements (elements of beam '" + b.name + "')",
                           static_cast<double>(b.elements), nullptr});
@@ -80,9 +80,9 @@ PetscErrorCode Simulation::restore(RunState *state)
   PetscCall(integrator_->restore(in));
   PetscCall(restoreStepper(in, &stepper_));
   PetscCall(dynamicState(state));
-  PetscCheck(integrator_->time() < scene_.dynamic.t_end, comm_, PETSC_ERR_USER_INPUT,
+  PetscCheck(integrator_->time() < scene().dynamic.t_end, comm_, PETSC_ERR_USER_INPUT,
              "restart file %s is at t = %s s, not before the end time %s s (-ts_max_time, dynamic.t_end)", file,
-             numberText(integrator_->time()).c_str(), numberText(scene_.dynamic.t_end).c_str());
+             numberText(integrator_->time()).c_str(), numberText(scene().dynamic.t_end).c_str());
   // A state edited or damaged so that it violates the constraints would
   // run on from a wrong configuration.
   outcome_.maxViolation = in.scalar("max_violation");
@@ -110,7 +110,7 @@ PetscErrorCode Simulation::runDynamic(const std::function<bool()> &stop)
                             options_.restartPath.c_str(), integrator_->time(), stepper_.steps));
   } else {
     stepper_ = StepperState{};
-    if (scene_.dynamic.startStatic) PetscCall(staticInitialState());
+    if (scene().dynamic.startStatic) PetscCall(staticInitialState());
     // A mechanism without consistent accelerations is reported by exception.
     PetscErrorCode ierr = 0;
     PetscCallCXX(ierr = integrator_->initialize(0.0, x_, zero_));
@@ -120,7 +120,7 @@ PetscErrorCode Simulation::runDynamic(const std::function<bool()> &stop)
   }
   for (auto &m : monitors_) PetscCall(m->start(state, restarted));
 
-  const double tEnd = scene_.dynamic.t_end;
+  const double tEnd = scene().dynamic.t_end;
   auto onStep = [&](const StepInfo &s) -> PetscErrorCode {
     PetscFunctionBeginUser;
     PetscCall(dynamicState(&state));
@@ -138,7 +138,7 @@ PetscErrorCode Simulation::runDynamic(const std::function<bool()> &stop)
   // PETSc error here and not unwind through main.
   {
     PetscErrorCode ierr = 0;
-    PetscCallCXX(ierr = integrate(*integrator_, scene_.dynamic, onStep, &summary_, &stepper_, stop));
+    PetscCallCXX(ierr = integrate(*integrator_, scene().dynamic, onStep, &summary_, &stepper_, stop));
     PetscCall(ierr);
   }
 
@@ -167,8 +167,8 @@ PetscErrorCode Simulation::runDynamic(const std::function<bool()> &stop)
                             (void)PetscTime(&now);
                             return now - started_;
                           }()));
-  if (summary_.completed && options_.modal && scene_.modal.count > 0) {
-    const bool atStart = scene_.modal.at == "start";
+  if (summary_.completed && options_.modal && scene().modal.count > 0) {
+    const bool atStart = scene().modal.at == "start";
     bool stopped = false;
     PetscCall(modalAnalysis(atStart ? 0.0 : integrator_->time(), atStart ? x_.get() : integrator_->positions(),
                             integrator_->multipliers(), stop, &stopped));
@@ -192,7 +192,7 @@ PetscErrorCode Simulation::staticInitialState()
   PetscCheck(converged, comm_, PETSC_ERR_NOT_CONVERGED,
              "%s: 'dynamic.initial: static': no static equilibrium found at t = 0 (%s); start from the undeformed state "
              "(leave 'initial' out) or make the loads at t = 0 smaller",
-             scene_.file.c_str(), statics_->failure().c_str());
+             scene().file.c_str(), statics_->failure().c_str());
   // The solver leaves scaled multipliers after the coordinates: the state is q only.
   PetscCall(VecGetOwnershipRange(x_, &lo, &hi));
   PetscCall(VecGetArray(x_, &a));

@@ -88,6 +88,35 @@ TEST(Simulation, MonitorFailureEndsTheRun)
   EXPECT_NEAR(sim.integrator()->time(), 0.005, 1e-12);
 }
 
+// The Simulation keeps its own scene: one built from a temporary Scene runs,
+// and changing the caller's Scene after construction changes nothing (with a
+// reference to the caller's Scene the edited t_end would end the run at
+// step 5 and the name would read "changed").
+TEST(Simulation, OwnsItsScene)
+{
+  Simulation fromTemporary(cantilever(), PETSC_COMM_WORLD, testOptions());
+  check(fromTemporary.setUp());
+  check(fromTemporary.run());
+
+  Scene scene = cantilever();
+  Simulation sim(scene, PETSC_COMM_WORLD, testOptions());
+  scene.name = "changed";
+  scene.dynamic.t_end = 0.005;
+  scene.bodies.clear();
+  scene.text.clear();
+  check(sim.setUp());
+  check(sim.run());
+
+  EXPECT_EQ(sim.scene().name, "small-cantilever");
+  EXPECT_FALSE(sim.scene().text.empty());
+  for (const Simulation *s : {&fromTemporary, &sim}) {
+    EXPECT_EQ(s->outcome().status, "completed");
+    EXPECT_EQ(s->outcome().steps, 20);
+  }
+  EXPECT_NEAR(sim.integrator()->time(), 0.02, 1e-12);
+  EXPECT_EQ(finalPositions(sim), finalPositions(fromTemporary)); // bitwise
+}
+
 TEST(Simulation, RestartContinuesStateAndMonitors)
 {
   PetscMPIInt size;
