@@ -95,7 +95,7 @@ private:
   // The scene's modes at (t, q, lambda); stop is asked during the eigen-solves
   // (*interrupted: they were stopped, no modes reported).
   PetscErrorCode modalAnalysis(double t, Vec q, Vec lambda, const std::function<bool()> &stop, bool *interrupted);
-  std::string failureDetails(const std::string &failure);
+  PetscErrorCode failureDetails(const std::string &failure, std::string *status); // collective
 
   MPI_Comm comm_;
   SimulationOptions options_;

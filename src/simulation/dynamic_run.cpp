@@ -146,7 +146,11 @@ PetscErrorCode Simulation::runDynamic(const std::function<bool()> &stop)
   outcome_.rejected = summary_.rejected;
   outcome_.newtonIterations = summary_.newtonIterations;
   if (summary_.interrupted) outcome_.status = "interrupted";
-  else if (!summary_.completed) outcome_.status = "failed: " + failureDetails(summary_.failure);
+  else if (!summary_.completed) {
+    std::string details;
+    PetscCall(failureDetails(summary_.failure, &details));
+    outcome_.status = "failed: " + details;
+  }
   else if (summary_.stepLimit) outcome_.status = RunOutcome::kStepLimit; // what the user asked for: exit 0
   // The final state for the monitors' finish(); its diagnostics are those
   // of the last accepted step, already seen.
@@ -202,22 +206,56 @@ PetscErrorCode Simulation::staticInitialState()
   PetscFunctionReturn(0);
 }
 
+namespace {
+
+// The lines of every rank's text, in rank order, each once (collective).
+PetscErrorCode gatherLines(MPI_Comm comm, const std::string &mine, std::vector<std::string> *lines)
+{
+  PetscMPIInt size, count = static_cast<PetscMPIInt>(mine.size());
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_size(comm, &size));
+  std::vector<PetscMPIInt> counts(size), offsets(size, 0);
+  PetscCallMPI(MPI_Allgather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, comm));
+  for (PetscMPIInt r = 1; r < size; ++r) offsets[r] = offsets[r - 1] + counts[r - 1];
+  std::string all(static_cast<size_t>(offsets[size - 1] + counts[size - 1]), '\0');
+  PetscCallMPI(MPI_Allgatherv(mine.data(), count, MPI_CHAR, all.data(), counts.data(), offsets.data(), MPI_CHAR, comm));
+  lines->clear();
+  for (size_t begin = 0; begin < all.size();) {
+    const size_t end = std::min(all.find('\n', begin), all.size());
+    const std::string line = all.substr(begin, end - begin);
+    if (!line.empty() && std::find(lines->begin(), lines->end(), line) == lines->end()) lines->push_back(line);
+    begin = end + 1;
+  }
+  PetscFunctionReturn(0);
+}
+
+} // namespace
+
 // Newton failing with a contact point at a track end: the booms barely
 // overlap (two pads nearly at one point) or a slider is leaving its track.
-std::string Simulation::failureDetails(const std::string &failure)
+// Collective: the status is the same on every rank.
+PetscErrorCode Simulation::failureDetails(const std::string &failure, std::string *status)
 {
-  std::string status = failure;
+  PetscFunctionBeginUser;
+  *status = failure;
   std::vector<double> slacks, multipliers;
   if (sensors_.readJoints(integrator_->positions(), integrator_->multipliers(), slacks, multipliers) == 0) {
     const std::string ends = contactsNearTrackEnds(model_, slacks);
     if (failure.rfind("Newton failed", 0) == 0 && !ends.empty())
-      status += "; contact points at their track ends (booms without overlap, or a slider leaving its track): " + ends;
+      *status += "; contact points at their track ends (booms without overlap, or a slider leaving its track): " + ends;
   }
-  // Items that met a force that is not finite (a rope segment of zero length).
+  // Items that met a force that is not finite (a rope segment of zero
+  // length). Only the rank that evaluates an item sees its fault: gathered
+  // from every rank, so that rank 0, which prints the status and writes it
+  // to the results file, names it.
+  std::string mine;
   for (const auto &item : model_.items())
-    if (const std::string fault = item->fault(); !fault.empty()) status += "; " + fault;
-  if (!conditioning_.empty()) status += "; likely cause: " + conditioning_.front();
-  return status;
+    if (const std::string fault = item->fault(); !fault.empty()) mine += fault + "\n";
+  std::vector<std::string> faults;
+  PetscCall(gatherLines(comm_, mine, &faults));
+  for (const std::string &fault : faults) *status += "; " + fault;
+  if (!conditioning_.empty()) *status += "; likely cause: " + conditioning_.front();
+  PetscFunctionReturn(0);
 }
 
 } // namespace boomdyn
