@@ -63,7 +63,7 @@ set(fault_cases
   full_disk_results full_disk_checkpoint full_disk_results_shim full_disk_checkpoint_shim full_disk_results_2
   restart_nan_time restart_violated_state restart_options_mismatch
   special_file_outputs out_of_memory restart_edited_state restart_formulation_mismatch full_disk_status_shim
-  second_scene unused_option private_session_dir)
+  second_scene unused_option private_session_dir memory_estimate)
 foreach(case ${fault_cases})
   add_test(NAME faults.${case}
     COMMAND /usr/bin/python3 ${CMAKE_SOURCE_DIR}/tests/faults/run_fault.py $<TARGET_FILE:boomdyn> ${CMAKE_SOURCE_DIR}

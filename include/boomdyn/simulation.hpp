@@ -48,8 +48,9 @@ struct SimulationOptions {
 
 class Simulation {
 public:
-  // The scene must outlive the Simulation. Throws ModelError for scenes
-  // that are no mechanism (Model's constructor).
+  // The Simulation keeps its own copy of the scene (the Model's), so the
+  // caller's Scene may be a temporary or change afterwards. Throws
+  // ModelError for scenes that are no mechanism (Model's constructor).
   Simulation(const Scene &scene, MPI_Comm comm, const SimulationOptions &options = {});
   Simulation(const Simulation &) = delete;
   Simulation &operator=(const Simulation &) = delete;
@@ -66,7 +67,7 @@ public:
   // integrator, step controller, every monitor's state.
   PetscErrorCode writeCheckpoint(const std::string &path) const;
 
-  const Scene &scene() const { return scene_; }
+  const Scene &scene() const { return model_.scene(); }
   const Model &model() const { return model_; }
   Assembler &assembler() { return assembler_; }
   SensorProbe &sensors() { return sensors_; }
@@ -94,9 +95,8 @@ private:
   // The scene's modes at (t, q, lambda); stop is asked during the eigen-solves
   // (*interrupted: they were stopped, no modes reported).
   PetscErrorCode modalAnalysis(double t, Vec q, Vec lambda, const std::function<bool()> &stop, bool *interrupted);
-  std::string failureDetails(const std::string &failure);
+  PetscErrorCode failureDetails(const std::string &failure, std::string *status); // collective
 
-  const Scene &scene_;
   MPI_Comm comm_;
   SimulationOptions options_;
   Model model_;

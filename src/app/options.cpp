@@ -239,12 +239,22 @@ PetscErrorCode checkOverrides(const Scene &scene, const Overrides &set)
                PETSC_ERR_USER_INPUT, "-boom_elements: body '%s' needs between 1 and 1e7 elements (got %d)",
                b.name.c_str(), b.elements);
   }
-  // About 4 kB per element (Jacobian pattern and values, factorization,
-  // state vectors): refuse meshes that cannot fit before allocating them.
+  // Peak memory per element, measured (/usr/bin/time -v, one rank, the
+  // cantilever of inputs/ with -boom_elements 1e4 and 1e5; docs/performance.md):
+  // 6.5 KiB from 1e4 to 1e5 elements for a dynamic run (Jacobian pattern and
+  // values, KLU factors, state vectors), 5.4 KiB for a static one, 11.1 KiB
+  // with an eigen-analysis (the factor of the shifted pencil and the Krylov
+  // basis). The estimate is that plus about 20 % for the program itself
+  // (about 50 MB), the system and what else runs: 8 kB, or 14 kB when the run
+  // solves for modes. A mesh is refused before anything is allocated.
+  const bool eigen = scene.analysis == Scene::Analysis::Modal || scene.modal.count > 0 || scene.tracking.interval > 0;
+  const double perElement = eigen ? 14e3 : 8e3;
   const double available = double(sysconf(_SC_PHYS_PAGES)) * double(sysconf(_SC_PAGE_SIZE));
-  PetscCheck(elements * 4096.0 < available, comm, PETSC_ERR_USER_INPUT,
-             "mesh too large for this machine's memory: %.0f elements need about %.0f GB, the machine has %.0f GB",
-             elements, elements * 4096.0 / 1e9, available / 1e9);
+  PetscCheck(elements * perElement < available, comm, PETSC_ERR_USER_INPUT,
+             "mesh too large for this machine's memory: %.0f elements need about %.0f GB (%.0f kB per element%s), "
+             "the machine has %.0f GB",
+             elements, elements * perElement / 1e9, perElement / 1e3, eigen ? " with an eigen-analysis" : "",
+             available / 1e9);
   const DynamicSpec &d = scene.dynamic;
   PetscCheck(!set.dt || d.dt > 0, comm, PETSC_ERR_USER_INPUT, "-ts_dt must be > 0 (got %g)", d.dt);
   PetscCheck(!set.tEnd || d.t_end > 0, comm, PETSC_ERR_USER_INPUT, "-ts_max_time must be > 0 (got %g)", d.t_end);

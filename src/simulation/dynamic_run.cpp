@@ -39,9 +39,9 @@ PetscErrorCode Simulation::restore(RunState *state)
   PetscFunctionBeginUser;
   CheckpointReader in(comm_);
   PetscCall(in.read(options_.restartPath));
-  PetscCheck(in.sceneText() == scene_.text, comm_, PETSC_ERR_USER_INPUT,
+  PetscCheck(in.sceneText() == scene().text, comm_, PETSC_ERR_USER_INPUT,
              "restart file %s was written for another scene text than %s", options_.restartPath.c_str(),
-             scene_.file.c_str());
+             scene().file.c_str());
   // The options that change the equations or the sequence of steps must be
   // those of the run that wrote the checkpoint (docs/reliability.md lists
   // them; older checkpoints do not hold the later ones). Options that only
@@ -55,12 +55,12 @@ PetscErrorCode Simulation::restore(RunState *state)
     const char *const *names; // the option's words by value, or null for a number
   };
   std::vector<Defining> defining = {
-      {"option_dt", "-ts_dt (dynamic.dt)", scene_.dynamic.dt, nullptr},
-      {"option_rho_inf", "-boom_rho_inf (dynamic.rho_inf)", scene_.dynamic.rho_inf, nullptr},
+      {"option_dt", "-ts_dt (dynamic.dt)", scene().dynamic.dt, nullptr},
+      {"option_rho_inf", "-boom_rho_inf (dynamic.rho_inf)", scene().dynamic.rho_inf, nullptr},
       {"option_adaptive_tol", "-boom_adaptive_tol", options_.adaptiveTolerance, nullptr},
       {"option_kink_restart", "-boom_kink_restart", options_.kinkRestart ? 1.0 : 0.0, nullptr},
       {"option_filtered_start", "-boom_filtered_start", options_.filteredStart ? 1.0 : 0.0, nullptr}};
-  for (const BodySpec &b : scene_.bodies)
+  for (const BodySpec &b : scene().bodies)
     if (b.type == BodySpec::Type::AncfBeam) {
       defining.push_back({"option_elements_" + b.name, "-boom_elements (elements of beam '" + b.name + "')",
                           static_cast<double>(b.elements), nullptr});
@@ -80,9 +80,9 @@ PetscErrorCode Simulation::restore(RunState *state)
   PetscCall(integrator_->restore(in));
   PetscCall(restoreStepper(in, &stepper_));
   PetscCall(dynamicState(state));
-  PetscCheck(integrator_->time() < scene_.dynamic.t_end, comm_, PETSC_ERR_USER_INPUT,
+  PetscCheck(integrator_->time() < scene().dynamic.t_end, comm_, PETSC_ERR_USER_INPUT,
              "restart file %s is at t = %s s, not before the end time %s s (-ts_max_time, dynamic.t_end)", file,
-             numberText(integrator_->time()).c_str(), numberText(scene_.dynamic.t_end).c_str());
+             numberText(integrator_->time()).c_str(), numberText(scene().dynamic.t_end).c_str());
   // A state edited or damaged so that it violates the constraints would
   // run on from a wrong configuration.
   outcome_.maxViolation = in.scalar("max_violation");
@@ -110,7 +110,7 @@ PetscErrorCode Simulation::runDynamic(const std::function<bool()> &stop)
                             options_.restartPath.c_str(), integrator_->time(), stepper_.steps));
   } else {
     stepper_ = StepperState{};
-    if (scene_.dynamic.startStatic) PetscCall(staticInitialState());
+    if (scene().dynamic.startStatic) PetscCall(staticInitialState());
     // A mechanism without consistent accelerations is reported by exception.
     PetscErrorCode ierr = 0;
     PetscCallCXX(ierr = integrator_->initialize(0.0, x_, scene_.dynamic.startStatic ? zero_ : v0_));
@@ -120,7 +120,7 @@ PetscErrorCode Simulation::runDynamic(const std::function<bool()> &stop)
   }
   for (auto &m : monitors_) PetscCall(m->start(state, restarted));
 
-  const double tEnd = scene_.dynamic.t_end;
+  const double tEnd = scene().dynamic.t_end;
   auto onStep = [&](const StepInfo &s) -> PetscErrorCode {
     PetscFunctionBeginUser;
     PetscCall(dynamicState(&state));
@@ -138,7 +138,7 @@ PetscErrorCode Simulation::runDynamic(const std::function<bool()> &stop)
   // PETSc error here and not unwind through main.
   {
     PetscErrorCode ierr = 0;
-    PetscCallCXX(ierr = integrate(*integrator_, scene_.dynamic, onStep, &summary_, &stepper_, stop));
+    PetscCallCXX(ierr = integrate(*integrator_, scene().dynamic, onStep, &summary_, &stepper_, stop));
     PetscCall(ierr);
   }
 
@@ -146,7 +146,11 @@ PetscErrorCode Simulation::runDynamic(const std::function<bool()> &stop)
   outcome_.rejected = summary_.rejected;
   outcome_.newtonIterations = summary_.newtonIterations;
   if (summary_.interrupted) outcome_.status = "interrupted";
-  else if (!summary_.completed) outcome_.status = "failed: " + failureDetails(summary_.failure);
+  else if (!summary_.completed) {
+    std::string details;
+    PetscCall(failureDetails(summary_.failure, &details));
+    outcome_.status = "failed: " + details;
+  }
   else if (summary_.stepLimit) outcome_.status = RunOutcome::kStepLimit; // what the user asked for: exit 0
   // The final state for the monitors' finish(); its diagnostics are those
   // of the last accepted step, already seen.
@@ -167,8 +171,8 @@ PetscErrorCode Simulation::runDynamic(const std::function<bool()> &stop)
                             (void)PetscTime(&now);
                             return now - started_;
                           }()));
-  if (summary_.completed && options_.modal && scene_.modal.count > 0) {
-    const bool atStart = scene_.modal.at == "start";
+  if (summary_.completed && options_.modal && scene().modal.count > 0) {
+    const bool atStart = scene().modal.at == "start";
     bool stopped = false;
     PetscCall(modalAnalysis(atStart ? 0.0 : integrator_->time(), atStart ? x_.get() : integrator_->positions(),
                             integrator_->multipliers(), stop, &stopped));
@@ -192,7 +196,7 @@ PetscErrorCode Simulation::staticInitialState()
   PetscCheck(converged, comm_, PETSC_ERR_NOT_CONVERGED,
              "%s: 'dynamic.initial: static': no static equilibrium found at t = 0 (%s); start from the undeformed state "
              "(leave 'initial' out) or make the loads at t = 0 smaller",
-             scene_.file.c_str(), statics_->failure().c_str());
+             scene().file.c_str(), statics_->failure().c_str());
   // The solver leaves scaled multipliers after the coordinates: the state is q only.
   PetscCall(VecGetOwnershipRange(x_, &lo, &hi));
   PetscCall(VecGetArray(x_, &a));
@@ -202,22 +206,56 @@ PetscErrorCode Simulation::staticInitialState()
   PetscFunctionReturn(0);
 }
 
+namespace {
+
+// The lines of every rank's text, in rank order, each once (collective).
+PetscErrorCode gatherLines(MPI_Comm comm, const std::string &mine, std::vector<std::string> *lines)
+{
+  PetscMPIInt size, count = static_cast<PetscMPIInt>(mine.size());
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_size(comm, &size));
+  std::vector<PetscMPIInt> counts(size), offsets(size, 0);
+  PetscCallMPI(MPI_Allgather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, comm));
+  for (PetscMPIInt r = 1; r < size; ++r) offsets[r] = offsets[r - 1] + counts[r - 1];
+  std::string all(static_cast<size_t>(offsets[size - 1] + counts[size - 1]), '\0');
+  PetscCallMPI(MPI_Allgatherv(mine.data(), count, MPI_CHAR, all.data(), counts.data(), offsets.data(), MPI_CHAR, comm));
+  lines->clear();
+  for (size_t begin = 0; begin < all.size();) {
+    const size_t end = std::min(all.find('\n', begin), all.size());
+    const std::string line = all.substr(begin, end - begin);
+    if (!line.empty() && std::find(lines->begin(), lines->end(), line) == lines->end()) lines->push_back(line);
+    begin = end + 1;
+  }
+  PetscFunctionReturn(0);
+}
+
+} // namespace
+
 // Newton failing with a contact point at a track end: the booms barely
 // overlap (two pads nearly at one point) or a slider is leaving its track.
-std::string Simulation::failureDetails(const std::string &failure)
+// Collective: the status is the same on every rank.
+PetscErrorCode Simulation::failureDetails(const std::string &failure, std::string *status)
 {
-  std::string status = failure;
+  PetscFunctionBeginUser;
+  *status = failure;
   std::vector<double> slacks, multipliers;
   if (sensors_.readJoints(integrator_->positions(), integrator_->multipliers(), slacks, multipliers) == 0) {
     const std::string ends = contactsNearTrackEnds(model_, slacks);
     if (failure.rfind("Newton failed", 0) == 0 && !ends.empty())
-      status += "; contact points at their track ends (booms without overlap, or a slider leaving its track): " + ends;
+      *status += "; contact points at their track ends (booms without overlap, or a slider leaving its track): " + ends;
   }
-  // Items that met a force that is not finite (a rope segment of zero length).
+  // Items that met a force that is not finite (a rope segment of zero
+  // length). Only the rank that evaluates an item sees its fault: gathered
+  // from every rank, so that rank 0, which prints the status and writes it
+  // to the results file, names it.
+  std::string mine;
   for (const auto &item : model_.items())
-    if (const std::string fault = item->fault(); !fault.empty()) status += "; " + fault;
-  if (!conditioning_.empty()) status += "; likely cause: " + conditioning_.front();
-  return status;
+    if (const std::string fault = item->fault(); !fault.empty()) mine += fault + "\n";
+  std::vector<std::string> faults;
+  PetscCall(gatherLines(comm_, mine, &faults));
+  for (const std::string &fault : faults) *status += "; " + fault;
+  if (!conditioning_.empty()) *status += "; likely cause: " + conditioning_.front();
+  PetscFunctionReturn(0);
 }
 
 } // namespace boomdyn

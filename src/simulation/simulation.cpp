@@ -12,7 +12,7 @@
 namespace boomdyn {
 
 Simulation::Simulation(const Scene &scene, MPI_Comm comm, const SimulationOptions &options)
-  : scene_(scene), comm_(comm), options_(options), model_(scene), assembler_(model_), sensors_(model_)
+  : comm_(comm), options_(options), model_(scene), assembler_(model_), sensors_(model_)
 {
 }
 
@@ -30,9 +30,9 @@ PetscErrorCode Simulation::setUp()
   conditioning_ = model_.conditioningWarnings();
   if (options_.warnings)
     for (const std::string &w : conditioning_) PetscCall(PetscPrintf(comm_, "warning: %s\n", w.c_str()));
-  if (scene_.analysis == Scene::Analysis::Dynamic) {
-    integrator_ = std::make_unique<GeneralizedAlpha>(assembler_, scene_.dynamic.rho_inf);
-    PetscCall(integrator_->setUp(scene_.dynamic.max_newton));
+  if (scene().analysis == Scene::Analysis::Dynamic) {
+    integrator_ = std::make_unique<GeneralizedAlpha>(assembler_, scene().dynamic.rho_inf);
+    PetscCall(integrator_->setUp(scene().dynamic.max_newton));
     integrator_->setErrorTolerance(options_.adaptiveTolerance);
     integrator_->setKinkRestart(options_.kinkRestart);
     integrator_->setAccelerationPredictor(options_.accelerationPredictor);
@@ -41,7 +41,7 @@ PetscErrorCode Simulation::setUp()
     auto energy = std::make_unique<EnergyCheck>(options_.energyTolerance, assembler_);
     energy_ = energy.get();
     monitors_.push_back(std::move(energy));
-    if (scene_.dynamic.startStatic) { // initial: static
+    if (scene().dynamic.startStatic) { // initial: static
       statics_ = std::make_unique<StaticSolver>(assembler_);
       PetscCall(statics_->setUp());
     }
@@ -106,7 +106,7 @@ PetscErrorCode Simulation::modalAnalysis(double t, Vec q, Vec lambda, const std:
   ModalOptions options;
   options.stop = stop;
   options.keepVectors = damped; // the damped analysis tries them first (classical damping)
-  PetscCall(solveModes(assembler_, t, q, lambda, scene_.modal.count, &modes, options));
+  PetscCall(solveModes(assembler_, t, q, lambda, scene().modal.count, &modes, options));
   *interrupted = modes.interrupted;
   if (*interrupted) PetscFunctionReturn(0);
   // A model with physical damping (Kelvin-Voigt sections, dampers; not
@@ -117,7 +117,7 @@ PetscErrorCode Simulation::modalAnalysis(double t, Vec q, Vec lambda, const std:
     DampedModalOptions dampedOptions;
     dampedOptions.stop = stop;
     dampedOptions.undamped = &modes;
-    PetscCall(solveDampedModes(assembler_, t, q, lambda, scene_.modal.count, &dm, dampedOptions));
+    PetscCall(solveDampedModes(assembler_, t, q, lambda, scene().modal.count, &dm, dampedOptions));
     *interrupted = dm.interrupted;
     if (*interrupted) PetscFunctionReturn(0);
     for (std::size_t k = 0; k < dm.omega.size(); ++k) {
@@ -154,18 +154,18 @@ PetscErrorCode Simulation::writeCheckpoint(const std::string &path) const
   PetscCall(saveStepper(w, stepper_));
   w.addScalar("max_violation", outcome_.maxViolation);
   // The options that define the run, checked by a restart (Simulation::restore).
-  w.addScalar("option_dt", scene_.dynamic.dt);
-  w.addScalar("option_rho_inf", scene_.dynamic.rho_inf);
+  w.addScalar("option_dt", scene().dynamic.dt);
+  w.addScalar("option_rho_inf", scene().dynamic.rho_inf);
   w.addScalar("option_adaptive_tol", options_.adaptiveTolerance);
   w.addScalar("option_kink_restart", options_.kinkRestart ? 1.0 : 0.0);
   w.addScalar("option_filtered_start", options_.filteredStart ? 1.0 : 0.0);
-  for (const BodySpec &b : scene_.bodies) // the mesh and the element formulation of every beam
+  for (const BodySpec &b : scene().bodies) // the mesh and the element formulation of every beam
     if (b.type == BodySpec::Type::AncfBeam) {
       w.addScalar("option_elements_" + b.name, b.elements);
       w.addScalar("option_axial_integration_" + b.name, static_cast<double>(b.section.axialIntegration));
     }
   for (const auto &m : monitors_) PetscCall(m->save(w));
-  PetscCall(w.write(path, scene_.text));
+  PetscCall(w.write(path, scene().text));
   PetscFunctionReturn(0);
 }
 

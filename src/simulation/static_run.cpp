@@ -16,9 +16,9 @@ PetscErrorCode Simulation::runStatic(const std::function<bool()> &stop)
   state.v = zero_;
   state.lambda = noMultipliers;
   for (auto &m : monitors_) PetscCall(m->start(state, false));
-  const double t = scene_.statics.time;
-  const bool modal = options_.modal && scene_.modal.count > 0;
-  const bool modesAtStart = modal && scene_.modal.at == "start";
+  const double t = scene().statics.time;
+  const bool modal = options_.modal && scene().modal.count > 0;
+  const bool modesAtStart = modal && scene().modal.at == "start";
   // Interrupts are honoured between load increments, before an
   // eigen-analysis and at every iteration of its solver.
   bool interrupted = false;
@@ -49,7 +49,7 @@ PetscErrorCode Simulation::runStatic(const std::function<bool()> &stop)
     PetscFunctionReturn(0);
   };
   PetscBool converged = PETSC_TRUE;
-  if (!interrupted) PetscCall(statics_->solve(t, scene_.statics.load_steps, x_, onLoadStep, &converged));
+  if (!interrupted) PetscCall(statics_->solve(t, scene().statics.load_steps, x_, onLoadStep, &converged));
   if (!converged) outcome_.status = "failed: " + statics_->failure();
   else if (interrupted || (modal && !modesAtStart && stopRequested()))
     outcome_.status = "interrupted", converged = PETSC_FALSE; // no modes after an interrupt

@@ -8,6 +8,7 @@ each is its own CTest (tests/faults/CMakeLists part of tests/fuzz.cmake).
 Usage: run_fault.py BOOMDYN SOURCE_DIR WORK_DIR CASE [MPIEXEC...]
 Exit 0: passed; 1: failed; 77: skipped (said why)."""
 import os
+import re
 import shutil
 import signal
 import subprocess
@@ -782,7 +783,7 @@ def case_out_of_memory():
     ended in std::terminate, exit 134; PETSc's allocator, a PETSc-internal
     message; KLU's analysis, reported as a singular matrix). Every one is one
     line saying out of memory."""
-    # 3e5 elements: 1.2 GB by the estimate, so a machine with 2 GB or more lets it start.
+    # 3e5 elements: 2.4 GB by the estimate (8 kB per element), so a machine with 3 GB or more lets it start.
     for elements, limit_mb in [(300000, 800), (100000, 600), (100000, 700)]:
         out_file = path("oom.h5")
         cmd = "ulimit -v %d && exec %s %s -o %s -boom_overwrite -boom_quiet -boom_elements %d -ts_max_time 0.002" % (
@@ -798,6 +799,35 @@ def case_out_of_memory():
               and "singular" not in line, "with one line saying so: " + line[:220])
         s, rows, _ = status(out_file)
         check(s != "completed", "no completed results (%s)" % s)
+
+
+def peak_kib(scene_file, elements, extra):
+    """Peak resident memory (KiB, /usr/bin/time) of one run with this many elements."""
+    rss = path("rss.txt")
+    cmd = ["/usr/bin/time", "-f", "%M", "-o", rss, boomdyn, scene_file, "-o", path("mem.h5"), "-boom_overwrite",
+           "-boom_quiet", "-boom_elements", str(elements), *extra]
+    subprocess.run(cmd, capture_output=True, text=True, timeout=300, env=env)
+    with open(rss) as f:
+        return int(f.read().split()[-1])
+
+
+def case_memory_estimate():
+    """The mesh-size guard's estimate (kB per element, in its message) covers
+    the peak memory per element measured here from 10^4 to 3*10^4 elements
+    (one rank), of a dynamic run and of a modal run."""
+    modal_scene = os.path.join(source, "inputs", "cantilever_modal.yaml")
+    for scene_file, extra, kind in [(scene, ["-ts_max_time", "0.002"], "dynamic"), (modal_scene, [], "modal")]:
+        rc, out = run(["-boom_quiet", "-boom_elements", "10000000"], scene_file=scene_file)
+        m = re.search(r"mesh too large for this machine's memory: .*\(([0-9.]+) kB per element", last_line(out))
+        check(rc == 1 and m is not None, "%s: 10^7 elements refused with the estimate per element: %s"
+              % (kind, last_line(out)[:200]))
+        if not m:
+            continue
+        estimate = float(m.group(1)) * 1e3
+        small, large = peak_kib(scene_file, 10000, extra), peak_kib(scene_file, 30000, extra)
+        measured = (large - small) * 1024.0 / 20000
+        check(measured < estimate, "%s: measured %.0f bytes per element (%d -> %d KiB) < the estimate %.0f"
+              % (kind, measured, small, large, estimate))
 
 
 # --------------------------------------------------------------- messages

@@ -88,6 +88,108 @@ TEST(Simulation, MonitorFailureEndsTheRun)
   EXPECT_NEAR(sim.integrator()->time(), 0.005, 1e-12);
 }
 
+// The Simulation keeps its own scene: one built from a temporary Scene runs,
+// and changing the caller's Scene after construction changes nothing (with a
+// reference to the caller's Scene the edited t_end would end the run at
+// step 5 and the name would read "changed").
+TEST(Simulation, OwnsItsScene)
+{
+  Simulation fromTemporary(cantilever(), PETSC_COMM_WORLD, testOptions());
+  check(fromTemporary.setUp());
+  check(fromTemporary.run());
+
+  Scene scene = cantilever();
+  Simulation sim(scene, PETSC_COMM_WORLD, testOptions());
+  scene.name = "changed";
+  scene.dynamic.t_end = 0.005;
+  scene.bodies.clear();
+  scene.text.clear();
+  check(sim.setUp());
+  check(sim.run());
+
+  EXPECT_EQ(sim.scene().name, "small-cantilever");
+  EXPECT_FALSE(sim.scene().text.empty());
+  for (const Simulation *s : {&fromTemporary, &sim}) {
+    EXPECT_EQ(s->outcome().status, "completed");
+    EXPECT_EQ(s->outcome().steps, 20);
+  }
+  EXPECT_NEAR(sim.integrator()->time(), 0.02, 1e-12);
+  EXPECT_EQ(finalPositions(sim), finalPositions(fromTemporary)); // bitwise
+}
+
+// Evaluates the rope 'hoist' on the last rank only, as the rank that owns
+// it, at the initial state with the hook 1 m up: the hook's centre (x_c,
+// y_c, theta) = (1.75, -1, 0) moves to (1.75, 0, 0) and its end onto the
+// jib's end (2, 0), exactly (every number exact in binary), a segment of
+// zero length, so the rope's force is NaN and the rope records its fault.
+// Then fails the run at step 2.
+class RopeAtZeroLength : public Monitor {
+public:
+  explicit RopeAtZeroLength(const Simulation &sim) : sim_(sim) {}
+  PetscErrorCode afterStep(const RunState &s, std::string *failure) override
+  {
+    PetscMPIInt size, rank;
+    PetscFunctionBeginUser;
+    PetscCallMPI(MPI_Comm_size(PETSC_COMM_WORLD, &size));
+    PetscCallMPI(MPI_Comm_rank(PETSC_COMM_WORLD, &rank));
+    if (s.step < 2) PetscFunctionReturn(0);
+    if (rank == size - 1) {
+      const Model &model = sim_.model();
+      PetscInt hookY = -1;
+      for (const auto &b : model.bodies())
+        if (b->name() == "hook") hookY = b->firstCoordinate() + 1;
+      const std::vector<double> q0 = model.initialCoordinates();
+      for (const auto &item : model.items()) {
+        if (item->name() != "hoist") continue;
+        std::vector<PetscInt> dofs;
+        item->coordinates(dofs);
+        std::vector<double> q, zero(dofs.size(), 0.0), r(dofs.size(), 0.0), J(dofs.size() * dofs.size(), 0.0);
+        for (PetscInt d : dofs) q.push_back(q0[d] + (d == hookY ? 1.0 : 0.0));
+        AssemblyContext ctx;
+        ctx.t = s.t;
+        item->evaluate(ctx, ItemValues{q.data(), zero.data(), zero.data(), nullptr}, r.data(), J.data());
+      }
+    }
+    *failure = "stopped by the test at step 2";
+    PetscFunctionReturn(0);
+  }
+
+private:
+  const Simulation &sim_;
+};
+
+// A rope whose force turns NaN fails the run, and the status names the rope
+// once on every rank, although only the rank that evaluates the rope sees
+// the NaN: rank 0 prints the status and writes it to the results file
+// (/summary/status). Meant for 2 ranks (mpi2.unit); on one rank the rope is
+// evaluated on rank 0 itself.
+TEST(Simulation, RopeFaultNamedOnEveryRank)
+{
+  const Scene scene = parseScene(R"(
+name: rope-fault
+analysis: dynamic
+gravity: [0, -9.81]
+bodies:
+  - {name: jib, length: 2, elements: 4, section: {EA: 1.0e9, EI: 1.0e6, rhoA: 30}}
+  - {name: hook, type: rigid, length: 0.5, origin: [1.5, -1.0], section: {rhoA: 10}}
+constraints:
+  - {type: clamp, name: base, body: jib, at: start}
+  - {type: elastic_rope, name: hoist, from: jib, from_at: end, to: hook, to_at: end, EA: 1.0e6}
+dynamic: {t_end: 0.01, dt: 1.0e-3}
+)",
+                                 "rope-fault.yaml");
+  Simulation sim(scene, PETSC_COMM_WORLD, testOptions());
+  check(sim.setUp());
+  sim.addMonitor(std::make_unique<RopeAtZeroLength>(sim));
+  check(sim.run());
+  const std::string &status = sim.outcome().status;
+  const std::string fault = "elastic_rope 'hoist': its force is not finite at t = 0.002 s";
+  EXPECT_EQ(status.rfind("failed: stopped by the test at step 2", 0), 0u) << status;
+  const size_t at = status.find(fault);
+  EXPECT_NE(at, std::string::npos) << status;
+  if (at != std::string::npos) EXPECT_EQ(status.find(fault, at + 1), std::string::npos) << "named once: " << status;
+}
+
 TEST(Simulation, RestartContinuesStateAndMonitors)
 {
   PetscMPIInt size;
