@@ -112,12 +112,13 @@ def main():
         rows = []
         for speed, dist in [(0.25, 1.25), (1.0, 1.25), (5.0, 1.25), (10.0, 1.25), (5.0, 1.74), (5.0, 1.9)]:
             t1 = 2.0 + dist / speed
-            s = scene_variant("paper_extraction.yaml", os.path.join(a.out, f"extraction_{speed:g}_{dist:g}.yaml"),
+            # The scene with the linear ramp drive (paper_extraction.yaml has an accel_limited one).
+            s = scene_variant("paper_extraction_single_calibration.yaml", os.path.join(a.out, f"extraction_{speed:g}_{dist:g}.yaml"),
                               [("displacement: {type: ramp, t0: 2.0, t1: 7.0, from: 0, to: 1.25}",
                                 f"displacement: {{type: ramp, t0: 2.0, t1: {t1:.6g}, from: 0, to: {dist:g}}}"),
                                ("t_end: 7.0", f"t_end: {t1 + 0.5:.6g}")])
             rows.append((f"{speed:g} m/s to {dist:g} m", run(b, s, a.out, ["-boom_tracking_interval", "0"], 900)))
-        table("Extraction speed and distance: paper_extraction.yaml (ramp from 2 s; drive work makes E grow)", rows)
+        table("Extraction speed and distance: paper_extraction_single_calibration.yaml (ramp from 2 s; drive work makes E grow)", rows)
 
     if "sigma0" in a.cases:
         rows = []

@@ -37,8 +37,9 @@ struct RunSummary {
 };
 
 // state: in/out (a fresh StepperState starts at the scene's dt; a restored
-// one continues). stop, if given, is asked after every accepted step and must
-// give the same answer on every rank.
+// one continues). stop, if given, is asked after every accepted step and
+// before every retry of a rejected one, and must give the same answer on
+// every rank.
 PetscErrorCode integrate(GeneralizedAlpha &integrator, const DynamicSpec &spec,
                          const std::function<PetscErrorCode(const StepInfo &)> &onStep, RunSummary *summary,
                          StepperState *state = nullptr, const std::function<bool()> &stop = {});

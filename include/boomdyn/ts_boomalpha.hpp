@@ -29,6 +29,7 @@
 #include <petscts.h>
 
 #include <exception>
+#include <functional>
 #include <string>
 
 namespace boomdyn {
@@ -56,6 +57,10 @@ struct BoomAlphaRun {
   double attempt = 0;      // size of the last attempt
   StepResult last;         // result of the last attempt
   std::string failure;     // why the run cannot go on (ts->reason < 0)
+  // Asked between the attempts of one step (a failing step may be cut many
+  // times down to dt_min); true ends the step unaccepted, as interrupted.
+  std::function<bool()> stop;
+  bool interrupted = false;
   // An exception from the integrator or a callback, rethrown after TSSolve
   // (C++ exceptions must not unwind through PETSc's C frames).
   std::exception_ptr exception;

@@ -153,6 +153,7 @@ PetscErrorCode integrate(GeneralizedAlpha &integrator, const DynamicSpec &spec,
   cb.run.endTolerance = 1e-9 * spec.dt;
   cb.onStep = &onStep;
   cb.stop = &stop;
+  cb.run.stop = stop;
   cb.tEnd = spec.t_end;
   TSConvergedReason reason = TS_CONVERGED_TIME;
   if (integrator.time() < spec.t_end - cb.run.endTolerance) {
@@ -167,7 +168,7 @@ PetscErrorCode integrate(GeneralizedAlpha &integrator, const DynamicSpec &spec,
   summary->newtonIterations = st.newtonIterations;
   if (!cb.failure.empty()) {
     summary->failure = cb.failure;
-  } else if (cb.interrupted) {
+  } else if (cb.interrupted || cb.run.interrupted) {
     summary->interrupted = true;
   } else if (reason < 0) {
     summary->failure = cb.run.failure.empty() ? TSConvergedReasons[reason] : cb.run.failure;

@@ -22,6 +22,18 @@ void fail(TS ts, TSConvergedReason reason, const std::string &message)
   runOf(ts)->failure = message;
 }
 
+// Before another attempt of a rejected step: a stop request (SIGINT, SIGTERM)
+// ends the run now, at the last accepted step, rather than after all the
+// cuts down to dt_min.
+bool stopBeforeRetry(TS ts)
+{
+  BoomAlphaRun *run = runOf(ts);
+  if (!run->stop || !run->stop()) return false;
+  run->interrupted = true;
+  ts->reason = TS_CONVERGED_USER;
+  return true;
+}
+
 PetscErrorCode stepBody(TS ts)
 {
   BoomAlphaRun *run = runOf(ts);
@@ -86,6 +98,7 @@ PetscErrorCode stepBody(TS ts)
         fail(ts, TS_DIVERGED_STEP_REJECTED, os.str());
         break;
       }
+      if (stopBeforeRetry(ts)) break;
       ts->time_step = st.h;
       continue;
     }
@@ -119,6 +132,7 @@ PetscErrorCode stepBody(TS ts)
         fail(ts, TS_DIVERGED_STEP_REJECTED, os.str());
         break;
       }
+      if (stopBeforeRetry(ts)) break;
       ts->time_step = st.h;
       continue;
     }
@@ -166,6 +180,12 @@ PetscErrorCode TSSetUp_BoomAlpha(TS ts)
              ((PetscObject)adapt)->type_name, TSBOOMALPHA, TSADAPTBOOMALPHA);
   PetscCheck(ours || !(runOf(ts)->integrator->errorTolerance() > 0), comm, PETSC_ERR_USER_INPUT,
              "-boom_adaptive_tol needs -ts_adapt_type %s, not %s", TSADAPTBOOMALPHA, ((PetscObject)adapt)->type_name);
+  // PETSc accepts a factor of exactly 1; a step that Newton cannot solve would
+  // then be retried at the same h forever, never reaching dt_min.
+  PetscCheck(adapt->scale_solve_failed < 1, comm, PETSC_ERR_USER_INPUT,
+             "-ts_adapt_scale_solve_failed %g must be less than 1: a step that Newton cannot solve is retried with h "
+             "times this factor until it converges or falls below dt_min, and at 1 it never shrinks",
+             (double)adapt->scale_solve_failed);
   PetscFunctionReturn(0);
 }
 

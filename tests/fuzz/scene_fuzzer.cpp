@@ -16,7 +16,7 @@
 // so that time_function.cpp runs under the sanitizers too.
 //
 // Built with clang++ -fsanitize=fuzzer,address,undefined from the reader's
-// own sources (no PETSc, no MPI): see tests/fuzz/run_fuzzer.sh.
+// own sources, linked with PETSc and MPI: see tests/fuzz/run_fuzzer.sh.
 #include "boomdyn/scene_reader.hpp"
 
 #include <algorithm>
