@@ -31,7 +31,8 @@
   X(spatialAngleDriveType) \
   X(spatialPointForceType) \
   X(spatialPointMomentType) \
-  X(spatialPointMassType)
+  X(spatialPointMassType) \
+  X(spatialAncfBeamType)
 
 namespace boomdyn {
 
