@@ -74,6 +74,9 @@ const TypeSchema &sectionSchema()
                          .byDefault(0.0, "0 (undamped)"));
     t.forms = {{"EA", "EI_y", "EI_z", "GJ", "rhoA", "rho_Ip"}, {"E", "G", "rho", "width", "height", "thickness"}};
     t.formsText = "EA, EI_y, EI_z, GJ, rhoA, rho_Ip, or E, G, rho, width, height, thickness";
+    for (const char *k : {"EI", "I", "A"})
+      t.rules.push_back(forbid(k, "not a key of a spatial beam's section: give EA, EI_y, EI_z, GJ, rhoA and rho_Ip, or "
+                                  "a box (E, G, rho, width, height, thickness)"));
     return t;
   }();
   return s;
