@@ -26,6 +26,11 @@ struct SectionSpec {
   // (default: projected strain, no membrane locking; docs/model.md §1.1).
   enum class AxialIntegration { Full, Reduced, Assumed };
   AxialIntegration axialIntegration = AxialIntegration::Assumed;
+  // Spatial beams (dimension 3): bending stiffnesses about the section axes
+  // d2 (EIy) and d3 (EIz), torsional stiffness GJ (N m^2), rotary inertia of
+  // the section about the axis rhoIp (kg m) and the retardation time of the
+  // torsion (s).
+  double EIy = 0, EIz = 0, GJ = 0, rhoIp = 0, etaTorsion = 0;
 };
 
 // A body as its type (src/bodies/*_type.cpp) describes it after reading,
@@ -33,7 +38,7 @@ struct SectionSpec {
 // before the Model is built from it by the same type. Type selects the
 // registered body type (bodyType() in physics_type.hpp).
 struct BodySpec {
-  enum class Type { AncfBeam, Rigid, SpatialRigid };
+  enum class Type { AncfBeam, Rigid, SpatialRigid, SpatialAncfBeam };
   std::string name;
   Type type = Type::AncfBeam;
   double length = 0;  // m

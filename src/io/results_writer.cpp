@@ -1,5 +1,7 @@
 #include "boomdyn/results_writer.hpp"
 
+#include "boomdyn/spatial_ancf_beam.hpp"
+
 #include "boomdyn/gather.hpp"
 
 #include "boomdyn/log_events.hpp"
@@ -354,10 +356,13 @@ void ResultsWriter::writeSampledBooms(double t, const std::vector<double> &q, co
 
 // A spatial body sampled like a beam: 3-D points along its axis, their
 // velocities, and the axial strain |r'| - 1 and curvature left at 0 (rigid
-// bodies; spatial beams will give theirs).
+// bodies; spatial beams sampled as planar ones, with their Green axial strain
+// and the magnitude of their bending curvature).
 void ResultsWriter::writeSpatialBody(const SpatialBody &body, const std::vector<double> &q, const std::vector<double> &v)
 {
-  const int n = 2, first = static_cast<int>(samplePoints_.size() / 3);
+  const auto *beam = dynamic_cast<const SpatialAncfBeam *>(&body);
+  const int n = beam ? beam->numElements() * kSamplesPerElement + 1 : 2,
+            first = static_cast<int>(samplePoints_.size() / 3);
   for (int k = 0; k < n; ++k) {
     const double s = body.length() * k / (n - 1);
     const SpatialLocation loc = body.locate(s);
@@ -367,7 +372,14 @@ void ResultsWriter::writeSpatialBody(const SpatialBody &body, const std::vector<
     body.sample(loc, s, vals, p);
     const Vec3 vel = p.r_q.leftCols(loc.count) * Eigen::Map<const Eigen::VectorXd>(vels, loc.count);
     for (int i = 0; i < 3; ++i) samplePoints_.push_back(p.r[i]), sampleVelocity_.push_back(vel[i]);
-    sampleStrain_.push_back(0.0), sampleCurvature_.push_back(0.0);
+    if (beam) {
+      // Green axial strain and the bending curvature's magnitude sqrt(K2^2 + K3^2).
+      const spatial_beam::Strains e =
+          spatial_beam::strainsAt(beam->geometry(), Eigen::Map<const spatial_beam::Vec14>(vals), loc.xi);
+      sampleStrain_.push_back(e.axial), sampleCurvature_.push_back(std::hypot(e.curvature2, e.curvature3));
+    } else {
+      sampleStrain_.push_back(0.0), sampleCurvature_.push_back(0.0);
+    }
     if (k > 0) sampleSegments_.push_back(first + k - 1), sampleSegments_.push_back(first + k);
   }
 }

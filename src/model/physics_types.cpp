@@ -32,7 +32,8 @@
   X(spatialAngleDriveType) \
   X(spatialPointForceType) \
   X(spatialPointMomentType) \
-  X(spatialPointMassType)
+  X(spatialPointMassType) \
+  X(spatialAncfBeamType)
 
 namespace boomdyn {
 

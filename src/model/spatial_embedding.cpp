@@ -11,7 +11,7 @@ namespace {
 [[noreturn]] void refuse(const SourceMark &mark, const std::string &what)
 {
   throw SpatialEmbeddingError(mark.file + ":" + std::to_string(mark.line) + ": key '" + mark.key + "': " + what +
-                              " cannot run as a spatial model yet (-boom_spatial takes rigid bodies, pins, clamps, "
+                              " cannot run as a spatial model yet (-boom_spatial takes rigid bodies, ANCF beams, pins, clamps, "
                               "angle drives, point forces and point masses)");
 }
 
@@ -52,7 +52,21 @@ Scene spatialEmbedding(const Scene &planar)
     throw SpatialEmbeddingError(planar.file + ": -boom_spatial: modal analysis and frequency tracking of spatial "
                                               "models are not available yet");
   for (BodySpec &b : s.bodies) {
-    if (b.type != BodySpec::Type::Rigid) refuse(b.mark, "body '" + b.name + "' (an ANCF beam)");
+    if (b.type == BodySpec::Type::AncfBeam) {
+      // A spatial beam with its section's z axis normal to the plane: the
+      // in-plane bending is about z (EI_z = EI). Out of the plane nothing
+      // loads it; it gets the same bending stiffness, GJ = EI and the rotary
+      // inertia of a section with polar radius of gyration 2 I/A = 2 EI/EA.
+      b.type = BodySpec::Type::SpatialAncfBeam;
+      b.origin3 = inPlane(b.origin);
+      b.axis = {std::cos(b.angle), std::sin(b.angle), 0.0};
+      b.up = {-std::sin(b.angle), std::cos(b.angle), 0.0};
+      b.section.EIz = b.section.EIy = b.section.GJ = b.section.EI;
+      b.section.rhoIp = b.section.rhoA * 2.0 * b.section.EI / b.section.EA;
+      b.section.etaTorsion = b.section.etaBending;
+      continue;
+    }
+    if (b.type != BodySpec::Type::Rigid) refuse(b.mark, "body '" + b.name + "'");
     const double m = b.section.rhoA * b.length, J = m * b.length * b.length / 12.0;
     b.type = BodySpec::Type::SpatialRigid;
     b.origin3 = inPlane(b.origin);

@@ -549,3 +549,43 @@ dynamic: {t_end: 0.2, dt: 1.0e-3, rho_inf: 0.8}
   const Scene scene = parseScene(text, "spatial-rank-independence.yaml");
   runOnAllRanksAndOne(scene, "spatial");
 }
+
+// Spatial beams (dimension 3): a clamped box boom with Kelvin-Voigt damping,
+// a second beam on a spherical joint at its tip, a side load, a torque and
+// gravity: the spatial beam elements and joints on beam points, spread
+// over both ranks.
+TEST(RankIndependence, SpatialBeamRunMatchesSingleRank)
+{
+  PetscMPIInt size;
+  MPI_Comm_size(PETSC_COMM_WORLD, &size);
+  if (size == 1) GTEST_SKIP() << "run under mpiexec -n 2 (CTest: mpi2.regression)";
+  const char *text = R"(
+name: spatial-beam-rank-independence
+dimension: 3
+analysis: dynamic
+gravity: [0, 0, -9.81]
+bodies:
+  - name: boom
+    type: ancf_beam
+    length: 3.0
+    elements: 8
+    section: {E: 2.1e11, G: 8.1e10, rho: 7850, width: 0.15, height: 0.2, thickness: 0.006, eta_bending: 2.0e-4}
+  - name: jib
+    type: ancf_beam
+    length: 1.0
+    elements: 4
+    origin: [3, 0, 0]
+    axis: [0, 1, 1]
+    section: {EA: 1.0e8, EI_y: 2.0e5, EI_z: 3.0e5, GJ: 1.0e5, rhoA: 20, rho_Ip: 0.05}
+constraints:
+  - {type: clamp, body: boom, at: start}
+  - {type: spherical_joint, body: jib, at: start, other: boom, other_at: end}
+loads:
+  - {type: point_force, body: boom, at: end, force: [0, 2000, 0]}
+  - {type: point_moment, body: boom, at: 1.5, moment: [1000, 0, 0]}
+  - {type: point_force, body: jib, at: end, follower_force: [0, 0, -100]}
+dynamic: {t_end: 0.05, dt: 1.0e-3, rho_inf: 0.8}
+)";
+  const Scene scene = parseScene(text, "spatial-beam-rank-independence.yaml");
+  runOnAllRanksAndOne(scene, "spatial-beam");
+}
