@@ -52,8 +52,6 @@ VecV toV(const Vec14 &e)
 {
   VecV v = VecV::Zero();
   for (int i = 0; i < kCoordinates; ++i) v[kSlot[i]] += kSign[i] * e[i];
-  v[kPsi1] = e[twistIndex(1)];
-  for (int d = 0; d < 3; ++d) v[3 * d] = e[positionIndex(1) + d] - e[positionIndex(0) + d];
   return v;
 }
 void scatter(const VecV &v, Vec14 &e)
@@ -110,13 +108,20 @@ VecV pullRates(const VecV &vdot, const Eigen::Matrix3d &M)
 }
 
 // The curvature's components on the carried axes and their spin at one
-// Gauss point, as jets over z (the expressions of detail::sectionState).
+// Gauss point, as jets over z. With t = r'/|r'|, kappa = t x t_x and node 0's
+// zero-twist axes t0, n, m = t0 x n, the carried axes are
+// b2 = n - c (t0 + t), b3 = t x b2 with c = t.n / D, D = 1 + t0.t; and since
+// kappa x t = t_x, t_x x t = -kappa and b3.t0 = -t.m, the quantities of
+// detail::sectionState reduce to seven scalar products:
+//   X = kappa.b2 = kappa.n - c kappa.t0,  Y = kappa.b3 = t_x.n - c t_x.t0,
+//   spin = b2_x.b3 = (t.m) Y / D + c X.
 template <typename J>
 struct CarriedStrains {
   J spin, X, Y;
 };
 template <typename J>
-CarriedStrains<J> carriedStrains(const V3<J> &t0, const V3<J> &nb2, const V3<double> &a, const V3<double> &b)
+CarriedStrains<J> carriedStrains(const V3<J> &t0, const V3<J> &n, const V3<J> &m, const V3<double> &a,
+                                 const V3<double> &b)
 {
   using detail::cross;
   using detail::dot;
@@ -124,20 +129,15 @@ CarriedStrains<J> carriedStrains(const V3<J> &t0, const V3<J> &nb2, const V3<dou
   using jet::sqrt;
   const V3<J> r1{J::variable(a.x, 0), J::variable(a.y, 3), J::variable(a.z, 6)};
   const V3<J> r2{J::variable(b.x, 2), J::variable(b.y, 5), J::variable(b.z, 8)};
-  const J J2 = dot(r1, r1);
-  const J invJ = 1.0 / sqrt(J2);
+  const J invJ = 1.0 / sqrt(dot(r1, r1));
   const V3<J> t = invJ * r1;
-  const J invJ2 = invJ * invJ;
-  const V3<J> kappa = invJ2 * cross(r1, r2);
+  const V3<J> kappa = (invJ * invJ) * cross(r1, r2);
   const V3<J> tx = invJ * (r2 - dot(t, r2) * t);
-  const V3<J> u = t0 + t;
   const J invD = 1.0 / (1.0 + dot(t0, t));
-  const J c = dot(t, nb2) * invD;
-  const V3<J> b2 = nb2 - c * u;
-  const V3<J> b3 = cross(t, b2);
-  const J cx = (dot(tx, nb2) - c * dot(t0, tx)) * invD;
-  const V3<J> b2x = J(-1.0) * (cx * u + c * tx);
-  return {dot(b2x, b3), dot(kappa, b2), dot(kappa, b3)};
+  const J c = dot(t, n) * invD;
+  const J X = dot(kappa, n) - c * dot(kappa, t0);
+  const J Y = dot(tx, n) - c * dot(tx, t0);
+  return {dot(t, m) * invD * Y + c * X, X, Y};
 }
 
 // One strain at a Gauss point over y: value, gradient, Hessian (if Hess).
@@ -147,15 +147,24 @@ struct YStrain {
   MatV h;
 };
 
-// The sums of one element over v (and the Gauss point's sums over y).
-struct Sums {
-  VecV f = VecV::Zero(), fd = VecV::Zero(), u = VecV::Zero();
-  MatV K = MatV::Zero(), Kq = MatV::Zero(), Dv = MatV::Zero();
-  double power = 0;
-};
-
 struct Wanted {
   bool K, damping, Kq, Dv;
+};
+
+// The sums of one element over v (and the Gauss point's sums over y); only
+// the wanted ones are cleared (and used).
+struct Sums {
+  VecV f, fd, u;
+  MatV K, Kq, Dv;
+  double power = 0;
+  explicit Sums(const Wanted &want)
+  {
+    f.setZero();
+    if (want.K) K.setZero();
+    if (want.damping) fd.setZero();
+    if (want.Dv) Dv.setZero();
+    if (want.Kq) Kq.setZero(), u.setZero();
+  }
 };
 
 // Adds c/2 s^2 (and its Kelvin-Voigt force with c eta) of one strain over y.
@@ -238,13 +247,12 @@ double elementForces(const Section &sec, const Geometry &geo, const Vec14 &e, co
       for (int k = 0; k < 6; ++k) hBeta(kSlope6[i], kSlope6[k]) = nodes.beta.h(i, k);
   }
   // Node 0's zero-twist axes over z (the same at every Gauss point).
-  V3<J9> t0, nb2;
+  V3<J9> t0, nb2, nb3;
   {
     J9 s0[kCoordinates];
     for (int i = 0; i < kCoordinates; ++i) s0[i] = J9(e[i]);
     for (int d = 0; d < 3; ++d) s0[slopeIndex(0) + d] = J9::variable(e[slopeIndex(0) + d], 3 * d + 1);
     t0 = detail::unit(detail::slopeOf(s0, 0));
-    V3<J9> nb3;
     detail::zeroTwistAxes(geo.node[0], t0, nb2, nb3);
   }
 
@@ -258,7 +266,7 @@ double elementForces(const Section &sec, const Geometry &geo, const Vec14 &e, co
   const bool projected = sec.axialIntegration == AxialIntegration::Assumed && gamma < 1.0;
   const bool axialOnRule5 = sec.axialIntegration != AxialIntegration::Reduced;
 
-  Sums v;
+  Sums v(want);
   // The projected axial strain's coefficients alpha_j = sum_p w_p L_j(xi_p) eps_p: values, gradients over v and
   // the 3 x 3 block Q_j = sum_p w_p L_j m_p m_p^T (m_p: M's first row) of their Hessians in every direction.
   double alpha[ancf::kAssumedTerms] = {0, 0};
@@ -271,9 +279,9 @@ double elementForces(const Section &sec, const Geometry &geo, const Vec14 &e, co
     const Eigen::Vector4d s1 = ancf::shapeValues(xi, l, 1), s2 = ancf::shapeValues(xi, l, 2);
     const Eigen::Matrix3d M = shapeBlock(s1, s2);
     const V3<double> a = detail::interpolate(e.data(), s1), b = detail::interpolate(e.data(), s2);
-    const CarriedStrains<J9> cs = carriedStrains(t0, nb2, a, b);
+    const CarriedStrains<J9> cs = carriedStrains(t0, nb2, nb3, a, b);
     const VecV ydot = want.damping ? pullRates(vdot, M) : VecV::Zero();
-    Sums y;
+    Sums y(want);
 
     const double phi = (1.0 - xi) * theta0 + xi * phiEnd;
     const double cp = std::cos(phi), sp = std::sin(phi);
@@ -347,7 +355,7 @@ double elementForces(const Section &sec, const Geometry &geo, const Vec14 &e, co
       const Eigen::Vector4d s1 = ancf::shapeValues(r.xi[p], l, 1);
       const Eigen::Matrix3d M = shapeBlock(s1, Eigen::Vector4d::Zero());
       const VecV ydot = want.damping ? pullRates(vdot, M) : VecV::Zero();
-      Sums y;
+      Sums y(want);
       addTerm<Hess>(axialStrain<Hess>(detail::interpolate(e.data(), s1)), r.w[p] * l * law.stiffness[0], law.eta[0],
                     ydot, want, y);
       pushSums(y, M, want, v);
