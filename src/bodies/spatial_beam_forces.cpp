@@ -40,7 +40,7 @@ using MatV = Eigen::Matrix<double, kV, kV>;
 // z (the Gauss point's variables, 9) shares v's layout: r'_d at 3d, r'_0d at
 // 3d + 1, r''_d at 3d + 2; in y = (z, theta_0, psi_1) the angles keep 9, 10.
 constexpr int kZ = 9;
-constexpr int kZJet = 10; // the jets' width: 9 used; an even width keeps Eigen's 2-wide vector loops (9: 2x slower)
+constexpr int kZJet = 10; // the jets' width: 9 used; an even width keeps Eigen's vector loops (9: 2x slower, 12: no faster)
 
 // Entry of v that coordinate i of e feeds, and the sign (r_0 enters r_1 - r_0
 // negatively); after the change psi_1 -> theta_1, entry 10 is theta_1.
