@@ -140,6 +140,115 @@ CarriedStrains<J> carriedStrains(const V3<J> &t0, const V3<J> &n, const V3<J> &m
   return {dot(t, m) * invD * Y + c * X, X, Y};
 }
 
+// The same three with their Hessians by the chain rule through the seven
+// scalar products q_i = w_i . p_i, w in {t, kappa, t_x} (functions of r', r''
+// alone: 6-variable jets), p in {n, t0, m} (of r'_0 alone: formed once per
+// element): dF/dz = G dF/dq, d^2F/dz^2 = G F_qq G^T + sum_i F_i d^2q_i/dz^2,
+// with d^2q/dz^2 = sum_k p_k d^2w_k (r', r'' block), dw^T dp (mixed),
+// sum_k w_k d^2p_k (r'_0 block).
+struct NodeAxes {
+  Vec3 value[3];        // n, t0, m
+  Mat3 jac[3];          // d p / d r'_0 (rows: components)
+  Mat3 hess[3][3];      // d^2 p_k / d r'_0^2
+};
+using Z = jet::Jet2<kZJet>;
+NodeAxes nodeAxes(const V3<Z> &n, const V3<Z> &t0, const V3<Z> &m)
+{
+  NodeAxes a;
+  const V3<Z> *p[3] = {&n, &t0, &m};
+  for (int i = 0; i < 3; ++i) {
+    const Z *c[3] = {&p[i]->x, &p[i]->y, &p[i]->z};
+    for (int k = 0; k < 3; ++k) {
+      a.value[i][k] = c[k]->v;
+      for (int d = 0; d < 3; ++d) {
+        a.jac[i](k, d) = c[k]->g[3 * d + 1];
+        for (int f = 0; f < 3; ++f) a.hess[i][k](d, f) = c[k]->h(3 * d + 1, 3 * f + 1);
+      }
+    }
+  }
+  return a;
+}
+
+CarriedStrains<Z> carriedStrainsByProducts(const NodeAxes &na, const V3<double> &a, const V3<double> &b)
+{
+  using J6 = jet::Jet2<6>;
+  using J8 = jet::Jet2<8>;
+  using detail::cross;
+  using detail::dot;
+  using jet::sqrt;
+  constexpr int kAB[6] = {0, 3, 6, 2, 5, 8}; // z slot of r'_d (0..2) and r''_d (3..5)
+  constexpr int kR0[3] = {1, 4, 7};
+  const V3<J6> r1{J6::variable(a.x, 0), J6::variable(a.y, 1), J6::variable(a.z, 2)};
+  const V3<J6> r2{J6::variable(b.x, 3), J6::variable(b.y, 4), J6::variable(b.z, 5)};
+  const J6 invJ = 1.0 / sqrt(dot(r1, r1));
+  const V3<J6> t = invJ * r1;
+  const V3<J6> kappa = (invJ * invJ) * cross(r1, r2);
+  const V3<J6> tx = invJ * (r2 - dot(t, r2) * t);
+  const V3<J6> *w[3] = {&t, &kappa, &tx};
+  Vec3 wv[3];
+  Eigen::Matrix<double, 3, 6> dw[3];
+  for (int i = 0; i < 3; ++i) {
+    wv[i] << w[i]->x.v, w[i]->y.v, w[i]->z.v;
+    dw[i].row(0) = w[i]->x.g.transpose(), dw[i].row(1) = w[i]->y.g.transpose(), dw[i].row(2) = w[i]->z.g.transpose();
+  }
+  // (w, p) of each product: t.n, t.t0, t.m, kappa.n, kappa.t0, t_x.n, t_x.t0.
+  constexpr int kW[7] = {0, 0, 0, 1, 1, 2, 2}, kP[7] = {0, 1, 2, 0, 1, 0, 1};
+  Eigen::Matrix<double, kZJet, 8> G = Eigen::Matrix<double, kZJet, 8>::Zero();
+  J8 q[7];
+  for (int i = 0; i < 7; ++i) {
+    const Vec3 &p = na.value[kP[i]];
+    const Eigen::Matrix<double, 6, 1> gab = dw[kW[i]].transpose() * p;
+    const Vec3 gr0 = na.jac[kP[i]].transpose() * wv[kW[i]];
+    for (int j = 0; j < 6; ++j) G(kAB[j], i) = gab[j];
+    for (int d = 0; d < 3; ++d) G(kR0[d], i) = gr0[d];
+    q[i] = J8::variable(wv[kW[i]].dot(p), i);
+  }
+  const J8 invD = 1.0 / (1.0 + q[1]);
+  const J8 c = q[0] * invD;
+  const J8 X = q[3] - c * q[4];
+  const J8 Y = q[5] - c * q[6];
+  const J8 spin = q[2] * invD * Y + c * X;
+  const J8 *F[3] = {&spin, &X, &Y};
+  Z out[3];
+  for (int s = 0; s < 3; ++s) {
+    const J8 &f = *F[s];
+    out[s].v = f.v;
+    out[s].g.noalias() = G * f.g;
+    // Lazy (coefficient-wise) products: at these sizes Eigen's blocked GEMM costs more than it saves.
+    const Eigen::Matrix<double, kZJet, 8> Gh = G.lazyProduct(f.h);
+    out[s].h.noalias() = Gh.lazyProduct(G.transpose());
+    // sum_i f_i d^2 q_i, block by block.
+    Eigen::Matrix<double, 6, 6> hab = Eigen::Matrix<double, 6, 6>::Zero();
+    Eigen::Matrix<double, 6, 3> hmix = Eigen::Matrix<double, 6, 3>::Zero();
+    Mat3 hr0 = Mat3::Zero();
+    Vec3 mu[3] = {Vec3::Zero(), Vec3::Zero(), Vec3::Zero()}, nu[3] = {Vec3::Zero(), Vec3::Zero(), Vec3::Zero()};
+    Mat3 jw[3] = {Mat3::Zero(), Mat3::Zero(), Mat3::Zero()};
+    for (int i = 0; i < 7; ++i) {
+      mu[kW[i]] += f.g[i] * na.value[kP[i]];
+      nu[kP[i]] += f.g[i] * wv[kW[i]];
+      jw[kW[i]] += f.g[i] * na.jac[kP[i]];
+    }
+    for (int i = 0; i < 3; ++i) {
+      const J6 *wc[3] = {&w[i]->x, &w[i]->y, &w[i]->z};
+      for (int k = 0; k < 3; ++k) {
+        hab += mu[i][k] * wc[k]->h;
+        hr0 += nu[i][k] * na.hess[i][k];
+      }
+      hmix.noalias() += dw[i].transpose() * jw[i];
+    }
+    for (int j = 0; j < 6; ++j) {
+      for (int k = 0; k < 6; ++k) out[s].h(kAB[j], kAB[k]) += hab(j, k);
+      for (int d = 0; d < 3; ++d) {
+        out[s].h(kAB[j], kR0[d]) += hmix(j, d);
+        out[s].h(kR0[d], kAB[j]) += hmix(j, d);
+      }
+    }
+    for (int d = 0; d < 3; ++d)
+      for (int e = 0; e < 3; ++e) out[s].h(kR0[d], kR0[e]) += hr0(d, e);
+  }
+  return {out[0], out[1], out[2]};
+}
+
 // One strain at a Gauss point over y: value, gradient, Hessian (if Hess).
 struct YStrain {
   double v;
@@ -255,6 +364,8 @@ double elementForces(const Section &sec, const Geometry &geo, const Vec14 &e, co
     t0 = detail::unit(detail::slopeOf(s0, 0));
     detail::zeroTwistAxes(geo.node[0], t0, nb2, nb3);
   }
+  NodeAxes axes;
+  if constexpr (Hess) axes = nodeAxes(nb2, t0, nb3);
 
   VecV vdot = VecV::Zero();
   if (want.damping) {
@@ -279,7 +390,11 @@ double elementForces(const Section &sec, const Geometry &geo, const Vec14 &e, co
     const Eigen::Vector4d s1 = ancf::shapeValues(xi, l, 1), s2 = ancf::shapeValues(xi, l, 2);
     const Eigen::Matrix3d M = shapeBlock(s1, s2);
     const V3<double> a = detail::interpolate(e.data(), s1), b = detail::interpolate(e.data(), s2);
-    const CarriedStrains<J9> cs = carriedStrains(t0, nb2, nb3, a, b);
+    CarriedStrains<J9> cs;
+    if constexpr (Hess)
+      cs = carriedStrainsByProducts(axes, a, b);
+    else
+      cs = carriedStrains(t0, nb2, nb3, a, b);
     const VecV ydot = want.damping ? pullRates(vdot, M) : VecV::Zero();
     Sums y(want);
 
