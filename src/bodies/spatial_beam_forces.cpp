@@ -8,8 +8,11 @@
 //   - beta and its derivatives are formed once per element (jets over the
 //     6 slopes);
 //   - per Gauss point, the spin of the carried axes and the curvature's
-//     components X, Y on the carried axes b2, b3 are jets over only the 9
-//     variables z = (r', r'_0, r'')_d, d = x, y, z; the angle enters in closed
+//     components X, Y on the carried axes b2, b3 are functions of the 9
+//     variables z = (r', r'_0, r'')_d, d = x, y, z, through seven scalar
+//     products (carriedStrains: first-order jets over z for the residual;
+//     carriedStrainsByProducts: chain rule through the products with small
+//     jets, for the Hessians); the angle enters in closed
 //     form (K2 = cos(phi) X + sin(phi) Y, K3 = cos(phi) Y - sin(phi) X;
 //     torsion = spin + (psi_1 - theta_0)/l);
 //   - the axial strain (|r'|^2 - 1)/2 is in closed form;
