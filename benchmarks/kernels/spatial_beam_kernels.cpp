@@ -127,4 +127,49 @@ void BM_SpatialBeamInternalAndDampingForce(benchmark::State &state)
 }
 BENCHMARK(BM_SpatialBeamInternalAndDampingForce);
 
+// The jet oracle (spatial_beam::reference: 12-variable jets through every
+// operation) on the same state, for the cost of what the kernels replace.
+void BM_SpatialBeamJetInternalForce(benchmark::State &state)
+{
+  const Section sec = spatialSection();
+  const SpatialState s = deformedState();
+  Vec14 f;
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(s.e);
+    reference::internalForce(sec, s.geo, s.e, f, nullptr);
+    benchmark::DoNotOptimize(f);
+  }
+}
+BENCHMARK(BM_SpatialBeamJetInternalForce);
+
+void BM_SpatialBeamJetInternalForceTangent(benchmark::State &state)
+{
+  const Section sec = spatialSection();
+  const SpatialState s = deformedState();
+  Vec14 f;
+  Mat14 K;
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(s.e);
+    reference::internalForce(sec, s.geo, s.e, f, &K);
+    benchmark::DoNotOptimize(f);
+    benchmark::DoNotOptimize(K);
+  }
+}
+BENCHMARK(BM_SpatialBeamJetInternalForceTangent);
+
+void BM_SpatialBeamJetDampingJacobians(benchmark::State &state)
+{
+  const Section sec = spatialSection();
+  const SpatialState s = deformedState();
+  Vec14 fd;
+  Mat14 Kq, Dv;
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(s.e);
+    benchmark::DoNotOptimize(reference::dampingForce(sec, s.geo, s.e, s.edot, fd, &Kq, &Dv));
+    benchmark::DoNotOptimize(Kq);
+    benchmark::DoNotOptimize(Dv);
+  }
+}
+BENCHMARK(BM_SpatialBeamJetDampingJacobians);
+
 } // namespace

@@ -73,6 +73,17 @@ double dampingForce(const Section &sec, const Geometry &geo, const Vec14 &e, con
 double internalAndDampingForce(const Section &sec, const Geometry &geo, const Vec14 &e, const Vec14 &edot, Vec14 &f,
                                Mat14 *K, Vec14 &fd, Mat14 *Kq, Mat14 *Dv);
 
+// The same three kernels with forward-mode jets carried through every
+// operation of the strains (second_order_jet.hpp): slower, kept as the
+// oracle the kernels above are tested against (equal to round-off).
+namespace reference {
+void internalForce(const Section &sec, const Geometry &geo, const Vec14 &e, Vec14 &f, Mat14 *K);
+double dampingForce(const Section &sec, const Geometry &geo, const Vec14 &e, const Vec14 &edot, Vec14 &fd, Mat14 *Kq,
+                    Mat14 *Dv);
+double internalAndDampingForce(const Section &sec, const Geometry &geo, const Vec14 &e, const Vec14 &edot, Vec14 &f,
+                               Mat14 *K, Vec14 &fd, Mat14 *Kq, Mat14 *Dv);
+} // namespace reference
+
 constexpr int kGaussPoints = 5;
 constexpr int kReducedAxialPoints = 3;
 

@@ -1,5 +1,6 @@
 #include "boomdyn/spatial_beam_element.hpp"
 
+#include "spatial_beam_quadrature.hpp"
 #include "spatial_beam_strains.hpp"
 
 #include <array>
@@ -9,46 +10,12 @@
 namespace boomdyn::spatial_beam {
 
 using detail::V3;
+using detail::legendre01;
+using detail::rule3;
+using detail::rule5;
+using detail::GaussRule;
 
 namespace {
-
-// n-point Gauss-Legendre rule (n = 3 or 5) on [0, 1].
-struct GaussRule {
-  int n;
-  double xi[kGaussPoints], w[kGaussPoints];
-};
-
-GaussRule gaussRule01(int n)
-{
-  GaussRule r{n, {}, {}};
-  if (n == 3) {
-    const double a = std::sqrt(0.6);
-    const double x[3] = {-a, 0.0, a}, wt[3] = {5.0 / 9.0, 8.0 / 9.0, 5.0 / 9.0};
-    for (int i = 0; i < 3; ++i) r.xi[i] = 0.5 * (x[i] + 1.0), r.w[i] = 0.5 * wt[i];
-    return r;
-  }
-  const double a = std::sqrt(5.0 - 2.0 * std::sqrt(10.0 / 7.0)) / 3.0;
-  const double b = std::sqrt(5.0 + 2.0 * std::sqrt(10.0 / 7.0)) / 3.0;
-  const double wa = (322.0 + 13.0 * std::sqrt(70.0)) / 900.0, wb = (322.0 - 13.0 * std::sqrt(70.0)) / 900.0;
-  const double x[5] = {-b, -a, 0.0, a, b}, wt[5] = {wb, wa, 128.0 / 225.0, wa, wb};
-  for (int i = 0; i < 5; ++i) r.xi[i] = 0.5 * (x[i] + 1.0), r.w[i] = 0.5 * wt[i];
-  return r;
-}
-
-const GaussRule &rule5()
-{
-  static const GaussRule r = gaussRule01(kGaussPoints);
-  return r;
-}
-const GaussRule &rule3()
-{
-  static const GaussRule r = gaussRule01(kReducedAxialPoints);
-  return r;
-}
-
-// Orthonormal Legendre polynomials on [0, 1] of degree 0 and 1: the basis of
-// the assumed axial strain (as in the planar element).
-double legendre01(int j, double xi) { return j == 0 ? 1.0 : std::sqrt(3.0) * (2.0 * xi - 1.0); }
 
 // The element's energy as a sum of quadratic terms U = 1/2 sum_k c_k s_k^2:
 // each strain at each quadrature point (or, for the Assumed axial strain,
@@ -221,6 +188,8 @@ void elasticFromTerms(const QuadraticTerms<J> &q, Vec14 &f, Mat14 *K)
 
 } // namespace
 
+namespace reference {
+
 void internalForce(const Section &sec, const Geometry &geo, const Vec14 &e, Vec14 &f, Mat14 *K)
 {
   if (!K) { // the residual: gradients only
@@ -261,5 +230,7 @@ double dampingForce(const Section &sec, const Geometry &geo, const Vec14 &e, con
   jetTerms(sec, geo, e, q);
   return dampingFromTerms(q, edot, fd, Kq, Dv);
 }
+
+} // namespace reference
 
 } // namespace boomdyn::spatial_beam
