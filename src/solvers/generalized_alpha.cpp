@@ -581,7 +581,13 @@ PetscErrorCode GeneralizedAlpha::filterStartAcceleration(double h, double betaP,
   PetscCall(VecCopy(q_, x_));
   PetscCall(assembler_.copyMultipliers(lambda_, x_, mu / sigma));
   PetscCall(VecWAXPY(vc_, -gammaP, q_, v_));
-  PetscCall(VecWAXPY(ac_, -betaP, q_, qdd_));
+  // qdd = ac + cA x with cA = beta'/mu, not beta': an offset with beta'
+  // left qdd = qdd_0 + beta' (1/mu - 1) q_0 (of size q_0/h^2) in the items
+  // whose tangent depends on qdd (a mass matrix M(q): a rigid body's point
+  // mass, Euler parameters), an O(1) change of a_0 that made the run first
+  // order (planar pendulum with a tip mass: 6.2e-5 -> 3.1e-5 rad from h = 1
+  // to 0.5 ms at rho_inf = 0.8).
+  PetscCall(VecWAXPY(ac_, -massCoefficient, q_, qdd_));
   PetscCall(forFirstOrder([&](PetscInt i, const PetscScalar *q, PetscScalar *vc, PetscScalar *) { vc[i] = -q[i] / h; }));
   PetscCall(assembler_.setOffsets(nullptr, vc_, ac_));
   // Right-hand side: the constraint rows of J w, (beta'/mu) M w on the

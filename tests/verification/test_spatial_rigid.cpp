@@ -251,10 +251,8 @@ namespace {
 // ground and turned by an angle drive: every kind -boom_spatial takes. The
 // two runs discretize different rotation coordinates (an angle against
 // Euler parameters), so they agree to their time-step errors, which are
-// second order: h = 0.1 ms. (A point mass on the free pendulum makes the
-// planar run's own error first order, 1.7e-4 m at h = 1 ms and 1.5e-5 m at
-// 0.1 ms against h = 0.01 ms, while the spatial run's is second order; see
-// the report of the branch that added this test.)
+// second order: h = 0.1 ms (PendulumOrder in test_point_mass_order.cpp
+// measures the order of both with a point mass on a pendulum).
 const char *kPlanar = R"(
 name: planar-in-space
 analysis: dynamic
