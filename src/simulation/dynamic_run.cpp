@@ -113,7 +113,7 @@ PetscErrorCode Simulation::runDynamic(const std::function<bool()> &stop)
     if (scene().dynamic.startStatic) PetscCall(staticInitialState());
     // A mechanism without consistent accelerations is reported by exception.
     PetscErrorCode ierr = 0;
-    PetscCallCXX(ierr = integrator_->initialize(0.0, x_, scene_.dynamic.startStatic ? zero_ : v0_));
+    PetscCallCXX(ierr = integrator_->initialize(0.0, x_, scene().dynamic.startStatic ? zero_ : v0_));
     PetscCall(ierr);
     PetscCall(dynamicState(&state));
     outcome_.maxViolation = state.violation;
