@@ -61,6 +61,16 @@ public:
   // placement in the scene), for derived defaults and body-fixed vectors.
   virtual Vec3 initialPosition(double s) const = 0;
   virtual Mat3 initialTriad(double s) const = 0;
+  // For the output: the number of pieces the body's axis is drawn with (a
+  // beam: its elements; a rigid body: 1), and the Green axial strain and
+  // bending-curvature magnitude at a location (0 for a rigid body).
+  virtual int outputPieces() const { return 1; }
+  virtual void axialStrainAndCurvature(const SpatialLocation &loc, const double *values, double &axial,
+                                       double &curvature) const
+  {
+    (void)loc, (void)values;
+    axial = curvature = 0;
+  }
 
 protected:
   SpatialBody(std::string name, double length, PetscInt first) : BodyBase(std::move(name), length, first) {}

@@ -40,6 +40,14 @@ SpatialLocation SpatialAncfBeam::locate(double s) const
   return loc;
 }
 
+void SpatialAncfBeam::axialStrainAndCurvature(const SpatialLocation &loc, const double *values, double &axial,
+                                              double &curvature) const
+{
+  const spatial_beam::Strains e =
+      spatial_beam::strainsAt(geometry_, Eigen::Map<const spatial_beam::Vec14>(values), loc.xi);
+  axial = e.axial, curvature = std::hypot(e.curvature2, e.curvature3);
+}
+
 void SpatialAncfBeam::sample(const SpatialLocation &loc, double s, const double *values, SpatialSample &out) const
 {
   const sb::Vec14 e = Eigen::Map<const sb::Vec14>(values);

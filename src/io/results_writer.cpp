@@ -1,6 +1,6 @@
 #include "boomdyn/results_writer.hpp"
 
-#include "boomdyn/spatial_ancf_beam.hpp"
+#include "boomdyn/spatial_body.hpp"
 
 #include "boomdyn/gather.hpp"
 
@@ -360,8 +360,8 @@ void ResultsWriter::writeSampledBooms(double t, const std::vector<double> &q, co
 // and the magnitude of their bending curvature).
 void ResultsWriter::writeSpatialBody(const SpatialBody &body, const std::vector<double> &q, const std::vector<double> &v)
 {
-  const auto *beam = dynamic_cast<const SpatialAncfBeam *>(&body);
-  const int n = beam ? beam->numElements() * kSamplesPerElement + 1 : 2,
+  const int pieces = body.outputPieces();
+  const int n = pieces > 1 ? pieces * kSamplesPerElement + 1 : 2,
             first = static_cast<int>(samplePoints_.size() / 3);
   for (int k = 0; k < n; ++k) {
     const double s = body.length() * k / (n - 1);
@@ -372,14 +372,9 @@ void ResultsWriter::writeSpatialBody(const SpatialBody &body, const std::vector<
     body.sample(loc, s, vals, p);
     const Vec3 vel = p.r_q.leftCols(loc.count) * Eigen::Map<const Eigen::VectorXd>(vels, loc.count);
     for (int i = 0; i < 3; ++i) samplePoints_.push_back(p.r[i]), sampleVelocity_.push_back(vel[i]);
-    if (beam) {
-      // Green axial strain and the bending curvature's magnitude sqrt(K2^2 + K3^2).
-      const spatial_beam::Strains e =
-          spatial_beam::strainsAt(beam->geometry(), Eigen::Map<const spatial_beam::Vec14>(vals), loc.xi);
-      sampleStrain_.push_back(e.axial), sampleCurvature_.push_back(std::hypot(e.curvature2, e.curvature3));
-    } else {
-      sampleStrain_.push_back(0.0), sampleCurvature_.push_back(0.0);
-    }
+    double axial, curvature;
+    body.axialStrainAndCurvature(loc, vals, axial, curvature);
+    sampleStrain_.push_back(axial), sampleCurvature_.push_back(curvature);
     if (k > 0) sampleSegments_.push_back(first + k - 1), sampleSegments_.push_back(first + k);
   }
 }
