@@ -47,19 +47,23 @@ PetscErrorCode stepBody(TS ts)
   run->accepted = false;
   PetscInt rejections = 0; // in this TSStep, for -ts_max_reject
   for (;;) {
-    // A step that would leave less than a millionth of itself to go is
-    // stretched to end on max_time: the sum of many steps misses max_time by
-    // rounding, and a last step of 1e-12 s gave forces and multipliers of
-    // order m/h^2 (MN) and nonsense in the last output row.
+    // A step that would leave less than a hundredth of itself before max_time
+    // or a drive's kink is stretched (by at most 1 %) to end there: what it
+    // leaves is a sliver step, and a sliver of h gives forces and multipliers
+    // of order m/sliver^2. The sum of many steps misses max_time by rounding
+    // (a last step of 1e-12 s gave MN forces and nonsense in the last output
+    // row), and an adaptive step can end just short of a kink (a landing
+    // step of 1e-6 h whose Newton failure was then blamed on dt_min).
+    const double sliver = 1e-2;
     const double h = st.h;
     const double remaining = ts->max_time - integrator.time();
     const bool match = ts->exact_final_time == TS_EXACTFINALTIME_MATCHSTEP;
-    // A drive's velocity kink within this step (or a millionth beyond it)
-    // ends the step, and the integrator restarts there (-boom_kink_restart);
-    // one at t_end is left to the final-time matching.
+    // A drive's kink within this step (or the sliver beyond it) ends the
+    // step, and the integrator restarts there (-boom_kink_restart); one at
+    // t_end is left to the final-time matching.
     const double kink = integrator.nextBreakpoint();
-    const bool land = kink < ts->max_time - run->endTolerance && kink - integrator.time() <= h * (1.0 + 1e-6);
-    const double attempt = land ? kink - integrator.time() : match && remaining <= h * (1.0 + 1e-6) ? remaining : h;
+    const bool land = kink < ts->max_time - run->endTolerance && kink - integrator.time() <= h * (1.0 + sliver);
+    const double attempt = land ? kink - integrator.time() : match && remaining <= h * (1.0 + sliver) ? remaining : h;
     StepResult &r = run->last;
     r = StepResult{};
     run->attempt = attempt;

@@ -127,6 +127,43 @@ TEST(TimeStepping, EndsOnTEndWithoutSliverSteps)
   }
 }
 
+// A drive's kink just beyond a step's end: the step is stretched (by at most
+// 1 %) to land on it instead of leaving a sliver. The clamp angle ramps to
+// t1 = 6.0005 ms with h = 1 ms, so the step from 5 ms would end 0.5 us short
+// of the kink and the landing step would be 5e-4 h long (forces of order
+// m/(5e-4 h)^2, and a Newton failure there was blamed on dt_min).
+TEST(TimeStepping, LandsOnAKinkWithoutASliverStep)
+{
+  const double h = 1e-3, kink = 6.0005e-3;
+  Scene scene = parseScene(R"(
+name: kink-sliver
+analysis: dynamic
+bodies:
+  - {name: boom, length: 1.0, elements: 4, section: {EA: 1.0e6, EI: 1.0e3, rhoA: 1.0}}
+constraints:
+  - type: clamp
+    body: boom
+    at: start
+    angle: {type: ramp, t0: 0, t1: 0.0060005, from: 0, to: 1}
+dynamic: {t_end: 0.012, dt: 1.0e-3, rho_inf: 0.8}
+output:
+  sensors:
+    - {name: tip, body: boom, at: end}
+)",
+                           "kink-sliver.yaml");
+  const DynamicHistory run = runDynamic(scene, PETSC_COMM_SELF);
+  ASSERT_TRUE(run.summary.completed) << run.summary.failure;
+  bool landed = false;
+  for (std::size_t k = 1; k < run.time.size(); ++k) {
+    const double step = run.time[k] - run.time[k - 1];
+    EXPECT_GT(step, 0.5 * h) << "step " << k << " ends at t = " << run.time[k] << " s";
+    EXPECT_LE(step, 1.01 * h * (1 + 1e-12)) << "step " << k;
+    landed = landed || std::abs(run.time[k] - kink) < 1e-15;
+  }
+  EXPECT_TRUE(landed) << "a step ends on the kink at " << kink << " s";
+  EXPECT_NEAR(run.time.back(), scene.dynamic.t_end, 1e-12);
+}
+
 // Adaptive steps (-boom_adaptive_tol): the error of the tip at t = 0.1 s
 // against a fine fixed-step reference falls with the tolerance, and the
 // controller takes fewer steps where the motion is smooth.
