@@ -10,6 +10,7 @@
 #include "boomdyn/model_builder.hpp"
 #include "boomdyn/pad_contact.hpp"
 #include "boomdyn/physics_type.hpp"
+#include "boomdyn/slack_track.hpp"
 #include "boomdyn/sliding_joint.hpp"
 
 #include <array>
@@ -128,32 +129,6 @@ void addFrictionState(const ComponentSpec &spec, ModelBuilder &b)
 {
   if (spec.has("friction"))
     b.scratch(spec.type, spec.name)["z"] = static_cast<double>(b.addFirstOrderState(spec.name));
-}
-
-PostStepHook followTrack(std::shared_ptr<SlidingJoint> joint)
-{
-  PostStepHook hook;
-  hook.name = joint->name();
-  hook.watched = {joint->slackIndex()};
-  hook.afterStep = [joint](const double *s, double t, bool *changed, std::string *stop) -> PetscErrorCode {
-    PetscFunctionBeginUser;
-    if (!joint->onTrack(s[0])) {
-      std::ostringstream os;
-      os << "sliding joint '" << joint->name() << "' left its track '" << joint->track().name() << "' at t = " << t
-         << " s (s = " << s[0] << " m, track length " << joint->track().length() << " m)";
-      *stop = os.str();
-      PetscFunctionReturn(0);
-    }
-    if (joint->relocate(s[0])) {
-      *changed = true;
-      PetscCall(PetscInfo(nullptr, "t = %g s: sliding joint '%s' moves to element %d of '%s' (s = %.12g m)\n", t,
-                          joint->name().c_str(), joint->trackLocation().element, joint->track().name().c_str(), s[0]));
-    }
-    PetscFunctionReturn(0);
-  };
-  hook.location = [joint] { return joint->trackLocation().s; };
-  hook.setLocation = [joint](double s) { joint->setTrackLocation(s); };
-  return hook;
 }
 
 // A pad's state from the watched coordinates: both bodies whole, then s (the
