@@ -28,6 +28,8 @@
 #include "boomdyn/spatial_ancf_beam.hpp"
 #include "boomdyn/spatial_body.hpp"
 
+#include <vector>
+
 namespace boomdyn {
 
 class SpatialSlidingJoint : public Constraint {
@@ -63,7 +65,17 @@ private:
   PetscInt slack_;
   SpatialLocation trackLoc_, sliderLoc_;
   bool align_, roll_;
-  Vec3 v2_, v3_;
+  // Each row is f(y) + sign a(y) . b(q_b) (docs/model.md §9.5): a the
+  // track's director d_{director+1} at s; b the slider point (position
+  // rows, f = a . r_track) or the slider-fixed vector with components c in
+  // its section axes (rotation rows, f = 0).
+  struct Row {
+    int director;
+    bool position;
+    Vec3 c;
+    double sign;
+  };
+  std::vector<Row> rows_;
 };
 
 } // namespace boomdyn

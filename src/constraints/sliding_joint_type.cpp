@@ -10,12 +10,11 @@
 #include "boomdyn/model_builder.hpp"
 #include "boomdyn/pad_contact.hpp"
 #include "boomdyn/physics_type.hpp"
-#include "boomdyn/slack_track.hpp"
+#include "boomdyn/slack_coordinate.hpp"
 #include "boomdyn/sliding_joint.hpp"
 
 #include <array>
 #include <cmath>
-#include <sstream>
 
 namespace boomdyn {
 
@@ -114,15 +113,7 @@ void addSlack(const ComponentSpec &spec, ModelBuilder &b)
   track.sample(l0, 0.0, v0.data(), origin);
   slider.sample(lp, at, vp.data(), point);
   const double s0 = (point.r[0] - origin.r[0]).dot(origin.r[1].normalized());
-  if (s0 < 0.0 || s0 > track.length()) {
-    std::ostringstream os;
-    os << ModelBuilder::where(spec.mark) << "sliding joint '" << spec.name << "': the slider point lies outside its track '"
-       << track.name() << "' (at s = " << s0 << " m of " << track.length() << " m)";
-    throw ModelError(os.str());
-  }
-  auto &mine = b.scratch(spec.type, spec.name);
-  mine["s0"] = s0;
-  mine["slack"] = static_cast<double>(b.addCoordinate(s0));
+  addSlackCoordinate(spec, b, track, s0);
 }
 
 void addFrictionState(const ComponentSpec &spec, ModelBuilder &b)

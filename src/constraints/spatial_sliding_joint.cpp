@@ -9,17 +9,6 @@ namespace sb = spatial_beam;
 
 namespace {
 
-// One row C = f(y) + sign a(y) . b(q_b): y = (track element, s), a a
-// director of the track's section at s, b the slider point (position rows)
-// or a vector fixed in the slider's section (rotation rows); f = d_k . r for
-// a position row, zero otherwise.
-struct RowShape {
-  int director;                      // a = d_{director + 1}
-  bool position;                     // b = the slider point; else b = T_b c
-  Vec3 c;                            // b's components in the slider's section axes
-  double sign;
-};
-
 // The row's parts in y (15) and q_b (nb).
 struct RowParts {
   double C = 0;
@@ -36,8 +25,11 @@ SpatialSlidingJoint::SpatialSlidingJoint(std::string name, const SpatialAncfBeam
                                          double sliderPoint, PetscInt slackIndex, double s0, bool align, bool roll,
                                          const Vec3 &v2, const Vec3 &v3)
   : name_(std::move(name)), track_(&track), slider_(&slider), xP_(sliderPoint), slack_(slackIndex),
-    trackLoc_(track.locate(s0)), sliderLoc_(slider.locate(sliderPoint)), align_(align), roll_(roll), v2_(v2), v3_(v3)
+    trackLoc_(track.locate(s0)), sliderLoc_(slider.locate(sliderPoint)), align_(align), roll_(roll)
 {
+  for (int k = 0; k < 3; ++k) rows_.push_back({k, true, Vec3::Zero(), -1.0});
+  if (align_) rows_.push_back({0, false, v2, 1.0}), rows_.push_back({0, false, v3, 1.0});
+  if (roll_) rows_.push_back({1, false, v3, 1.0});
 }
 
 void SpatialSlidingJoint::coordinates(std::vector<PetscInt> &dofs) const
@@ -68,11 +60,6 @@ void SpatialSlidingJoint::evaluate(double, const double *q, const double *v, con
   SpatialSample pb;
   slider_->sample(sliderLoc_, xP_, qb, pb);
 
-  std::vector<RowShape> shapes;
-  for (int k = 0; k < 3; ++k) shapes.push_back({k, true, Vec3::Zero(), -1.0});
-  if (align_) shapes.push_back({0, false, v2_, 1.0}), shapes.push_back({0, false, v3_, 1.0});
-  if (roll_) shapes.push_back({1, false, v3_, 1.0});
-
   const bool second = v || w;
   // y-space values of the velocities: the element's, then s's.
   sb::Vec15 vy;
@@ -89,7 +76,7 @@ void SpatialSlidingJoint::evaluate(double, const double *q, const double *v, con
   SpatialHessian h;
   RowParts p;
   for (int row = 0; row < m; ++row) {
-    const RowShape &r = shapes[row];
+    const Row &r = rows_[row];
     Vec3 a, b;
     Eigen::Matrix<double, 3, ny> ay;
     for (int c = 0; c < 3; ++c) {

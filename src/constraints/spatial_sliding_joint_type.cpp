@@ -6,10 +6,9 @@
 // stops the run when the slider leaves its track).
 #include "boomdyn/model_builder.hpp"
 #include "boomdyn/physics_type.hpp"
-#include "boomdyn/slack_track.hpp"
+#include "boomdyn/slack_coordinate.hpp"
 #include "boomdyn/spatial_sliding_joint.hpp"
 
-#include <sstream>
 
 namespace boomdyn {
 
@@ -44,15 +43,7 @@ void addSpatialSlack(const ComponentSpec &spec, ModelBuilder &b)
   const SpatialBody &track = b.spatialBody(spec.text("track")), &slider = b.spatialBody(spec.text("body"));
   const Vec3 origin = track.initialPosition(0.0), axis = track.initialTriad(0.0).col(0);
   const double s0 = (slider.initialPosition(spec.number("at")) - origin).dot(axis);
-  if (s0 < 0.0 || s0 > track.length()) {
-    std::ostringstream os;
-    os << ModelBuilder::where(spec.mark) << "sliding joint '" << spec.name << "': the slider point lies outside its track '"
-       << track.name() << "' (at s = " << s0 << " m of " << track.length() << " m)";
-    throw ModelError(os.str());
-  }
-  auto &mine = b.scratch(spec.type, spec.name);
-  mine["s0"] = s0;
-  mine["slack"] = static_cast<double>(b.addCoordinate(s0));
+  addSlackCoordinate(spec, b, track, s0);
 }
 
 // The reactions on the slider in the track's section frame at s are the

@@ -6,6 +6,7 @@
 // states, with s inside elements, on nodes and just past an element's end;
 // and the rows' continuity when the contact point moves to the next element.
 #include "boomdyn/spatial_beam_slack_frame.hpp"
+#include "boomdyn/slack_track.hpp"
 #include "boomdyn/spatial_rigid_body.hpp"
 #include "boomdyn/spatial_sliding_joint.hpp"
 
@@ -37,7 +38,7 @@ sb::Section unitSection()
 
 // A 4-element beam of length 2 m along a general direction, and a slider:
 // a rigid sleeve (Euler parameters) or a second beam.
-struct Setup {
+struct SlidingSetup {
   const Mat3 triad = axesOf(Vec3(1, 0.4, -0.3), Vec3(0.2, 1, 0.5));
   SpatialAncfBeam track{"track", 2.0, 4, unitSection(), Vec3(0.1, -0.2, 0.3), triad, 0};
   SpatialRigidBody sleeve{"sleeve", 0.4, 3.0, Mat3::Identity(), Vec3(0.2, 0, 0), Vec3(0.5, 0, 0),
@@ -45,7 +46,7 @@ struct Setup {
   SpatialAncfBeam inner{"inner", 1.0, 2, unitSection(), Vec3(0.3, 0.1, 0.0), axesOf(Vec3(1, 0.3, -0.4), Vec3(0, 1, 0)),
                         42};
   std::vector<double> q0 = std::vector<double>(42 + 21);
-  Setup()
+  SlidingSetup()
   {
     track.initialCoordinates(q0.data());
     sleeve.initialCoordinates(q0.data() + 35);
@@ -128,7 +129,7 @@ TEST(SpatialSlackFrame, DerivativesInCoordinatesAndArcLength)
 {
   std::mt19937 rng(361);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
-  const Setup st;
+  const SlidingSetup st;
   const sb::Geometry &geo = st.track.geometry();
   for (int trial = 0; trial < 6; ++trial) {
     const std::vector<double> qg = randomGlobal(st.q0, rng, 0.1);
@@ -185,7 +186,7 @@ TEST(SpatialSlidingJoint, RowsMatchFiniteDifferences)
 {
   std::mt19937 rng(362);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
-  const Setup st;
+  const SlidingSetup st;
   const Vec3 v2 = Vec3(0.3, 0.9, -0.2).normalized(), v3 = Vec3(-0.1, 0.2, 1.0).normalized();
   struct Case {
     const SpatialBody *slider;
@@ -224,7 +225,7 @@ TEST(SpatialSlidingJoint, RowsMatchFiniteDifferences)
 TEST(SpatialSlidingJoint, RowsAreContinuousAcrossElementBoundaries)
 {
   std::mt19937 rng(363);
-  const Setup st;
+  const SlidingSetup st;
   const Vec3 v2 = Vec3(0.3, 0.9, -0.2).normalized(), v3 = Vec3(-0.1, 0.2, 1.0).normalized();
   SpatialSlidingJoint before("joint", st.track, st.sleeve, 0.1, 63, 0.9, true, true, v2, v3);
   SpatialSlidingJoint after("joint", st.track, st.sleeve, 0.1, 63, 1.1, true, true, v2, v3);

