@@ -601,6 +601,6 @@ TEST(RankIndependence, SpatialSlidingJointMatchesSingleRank)
   const Scene scene = readSceneFile(std::string(BOOMDYN_SOURCE_DIR) + "/inputs/spatial_sleeve_incline.yaml");
   const RankRuns r = runOnAllRanksAndOne(scene, "spatial sliding joint");
   if (!r.completed) return;
-  EXPECT_GE(r.alone.patternVersion, 2); // the contact point changed element
+  EXPECT_GE(r.alone.patternVersion, 1); // the contact point changed element (once, at t = 0.213 s)
   EXPECT_EQ(r.distributed.patternVersion, r.alone.patternVersion);
 }
