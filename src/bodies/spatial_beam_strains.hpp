@@ -175,11 +175,13 @@ struct SectionState {
   V3<T> t, d2, d3;
 };
 
-template <typename T>
-SectionState<T> sectionState(const NodeData<T> &n, const T *e, double xi, double l, const Eigen::Vector4d &s1,
-                             const Eigen::Vector4d &s2)
+// The section at xi from the axis derivatives r1 = r', r2 = r'' there. xi
+// is a double inside an element's quadrature, or a jet when the section
+// point itself is a variable (the slack coordinate of a sliding joint,
+// spatial_beam_slack_frame.cpp).
+template <typename T, typename X>
+SectionState<T> sectionStateOf(const NodeData<T> &n, const V3<T> &r1, const V3<T> &r2, const X &xi, double l)
 {
-  const V3<T> r1 = interpolate(e, s1), r2 = interpolate(e, s2);
   const T J2 = dot(r1, r1);
   const T invJ = 1.0 / sqrt(J2);
   const V3<T> t = invJ * r1;
@@ -210,6 +212,13 @@ SectionState<T> sectionState(const NodeData<T> &n, const T *e, double xi, double
   s.curvature2 = dot(kappa, s.d2);
   s.curvature3 = dot(kappa, s.d3);
   return s;
+}
+
+template <typename T>
+SectionState<T> sectionState(const NodeData<T> &n, const T *e, double xi, double l, const Eigen::Vector4d &s1,
+                             const Eigen::Vector4d &s2)
+{
+  return sectionStateOf(n, interpolate(e, s1), interpolate(e, s2), xi, l);
 }
 
 // The element vector as jets over w: r_0 constant, the others variables.

@@ -1,11 +1,15 @@
 #include "boomdyn/sliding_joint.hpp"
 
+#include "boomdyn/slack_track.hpp"
+
 #include <Eigen/Dense>
 
 #include <algorithm>
 #include <cstring>
 
 namespace boomdyn {
+
+static_assert(SlidingJoint::relocationHysteresis == kSlackRelocationHysteresis, "one relocation band for all sliding joints");
 
 namespace {
 
@@ -56,9 +60,8 @@ void SlidingJoint::coordinates(std::vector<PetscInt> &dofs) const
 
 bool SlidingJoint::relocate(double s)
 {
-  const double sc = std::clamp(s, 0.0, track_->length());
-  const double band = relocationHysteresis * (trackLoc_.end - trackLoc_.begin);
-  if (sc >= trackLoc_.begin - band && sc <= trackLoc_.end + band) return false;
+  double sc;
+  if (!slackLeavesElement(s, trackLoc_.begin, trackLoc_.end, track_->length(), &sc)) return false;
   const CenterlineLocation loc = track_->locate(sc);
   if (loc.element == trackLoc_.element) return false;
   trackLoc_ = loc;

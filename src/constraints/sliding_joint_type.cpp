@@ -10,11 +10,11 @@
 #include "boomdyn/model_builder.hpp"
 #include "boomdyn/pad_contact.hpp"
 #include "boomdyn/physics_type.hpp"
+#include "boomdyn/slack_coordinate.hpp"
 #include "boomdyn/sliding_joint.hpp"
 
 #include <array>
 #include <cmath>
-#include <sstream>
 
 namespace boomdyn {
 
@@ -113,47 +113,13 @@ void addSlack(const ComponentSpec &spec, ModelBuilder &b)
   track.sample(l0, 0.0, v0.data(), origin);
   slider.sample(lp, at, vp.data(), point);
   const double s0 = (point.r[0] - origin.r[0]).dot(origin.r[1].normalized());
-  if (s0 < 0.0 || s0 > track.length()) {
-    std::ostringstream os;
-    os << ModelBuilder::where(spec.mark) << "sliding joint '" << spec.name << "': the slider point lies outside its track '"
-       << track.name() << "' (at s = " << s0 << " m of " << track.length() << " m)";
-    throw ModelError(os.str());
-  }
-  auto &mine = b.scratch(spec.type, spec.name);
-  mine["s0"] = s0;
-  mine["slack"] = static_cast<double>(b.addCoordinate(s0));
+  addSlackCoordinate(spec, b, track, s0);
 }
 
 void addFrictionState(const ComponentSpec &spec, ModelBuilder &b)
 {
   if (spec.has("friction"))
     b.scratch(spec.type, spec.name)["z"] = static_cast<double>(b.addFirstOrderState(spec.name));
-}
-
-PostStepHook followTrack(std::shared_ptr<SlidingJoint> joint)
-{
-  PostStepHook hook;
-  hook.name = joint->name();
-  hook.watched = {joint->slackIndex()};
-  hook.afterStep = [joint](const double *s, double t, bool *changed, std::string *stop) -> PetscErrorCode {
-    PetscFunctionBeginUser;
-    if (!joint->onTrack(s[0])) {
-      std::ostringstream os;
-      os << "sliding joint '" << joint->name() << "' left its track '" << joint->track().name() << "' at t = " << t
-         << " s (s = " << s[0] << " m, track length " << joint->track().length() << " m)";
-      *stop = os.str();
-      PetscFunctionReturn(0);
-    }
-    if (joint->relocate(s[0])) {
-      *changed = true;
-      PetscCall(PetscInfo(nullptr, "t = %g s: sliding joint '%s' moves to element %d of '%s' (s = %.12g m)\n", t,
-                          joint->name().c_str(), joint->trackLocation().element, joint->track().name().c_str(), s[0]));
-    }
-    PetscFunctionReturn(0);
-  };
-  hook.location = [joint] { return joint->trackLocation().s; };
-  hook.setLocation = [joint](double s) { joint->setTrackLocation(s); };
-  return hook;
 }
 
 // A pad's state from the watched coordinates: both bodies whole, then s (the

@@ -30,6 +30,8 @@
   X(revoluteJointType) \
   X(spatialClampType) \
   X(spatialAngleDriveType) \
+  X(spatialSlidingJointType) \
+  X(spatialExtractionDriveType) \
   X(spatialPointForceType) \
   X(spatialPointMomentType) \
   X(spatialPointMassType) \

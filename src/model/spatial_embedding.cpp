@@ -12,7 +12,8 @@ namespace {
 {
   throw SpatialEmbeddingError(mark.file + ":" + std::to_string(mark.line) + ": key '" + mark.key + "': " + what +
                               " cannot run as a spatial model yet (-boom_spatial takes rigid bodies, ANCF beams, pins, clamps, "
-                              "angle drives, point forces and point masses)");
+                              "angle drives, sliding joints on beams without friction or pad, extraction drives, "
+                              "point forces and point masses)");
 }
 
 Vec3d inPlane(const Vec2d &v) { return {v[0], v[1], 0.0}; }
@@ -101,6 +102,17 @@ Scene spatialEmbedding(const Scene &planar)
       ComponentSpec d = aboutZ(c, "angle_drive", c.name);
       d.set("zero", Vec3d{1, 0, 0}).set("angle", c.function("angle"));
       s.constraints.push_back(d);
+    } else if (c.type == "sliding_joint" && !c.has("friction") && !c.has("pad") &&
+               bodySpec(planar, c.text("track")).type == BodySpec::Type::AncfBeam) {
+      // The spatial joint's rows d1 . d and d2 . d are the planar rows i . d
+      // and j . d (the beam's d2 is the in-plane normal j); d3 . d holds the
+      // slider point in the plane of the track's axis.
+      ComponentSpec r("sliding_joint", c.name);
+      r.mark = c.mark;
+      r.set("body", c.text("body")).set("at", c.number("at")).set("track", c.text("track"));
+      s.constraints.push_back(r);
+    } else if (c.type == "extraction_drive") {
+      s.constraints.push_back(c);
     } else {
       refuse(c.mark, "constraint '" + c.name + "' (" + c.type + ")");
     }
