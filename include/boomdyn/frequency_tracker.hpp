@@ -30,6 +30,8 @@ struct FollowedMode {
   std::vector<double> shape; // its shape (rank 0), max-norm 1
   // Damped models: the damped mode assigned to it by MAC (rank 0; NaN, 0: none).
   double dampedHz = 0, dampingRatio = 0, dampedMac = 0;
+  // The share of each kind in its strain energy (mode_labels.hpp; all ranks).
+  EnergyShares energyShares{};
 };
 
 struct TrackedModes {
