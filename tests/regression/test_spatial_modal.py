@@ -103,12 +103,12 @@ analysis: modal
 gravity: [0, 0, 0]
 bodies:
   - name: boom
-type: ancf_beam
-length: {L}
-elements: {n}
-axis: [1, 0, 0]
-up: [0, 1, 0]
-section: {{E: {E}, G: {G}, rho: {RHO}, width: {B}, height: {H}, thickness: {T}}}
+    type: ancf_beam
+    length: {L}
+    elements: {n}
+    axis: [1, 0, 0]
+    up: [0, 1, 0]
+    section: {{E: {E}, G: {G}, rho: {RHO}, width: {B}, height: {H}, thickness: {T}}}
 constraints:
   - {{type: clamp, name: root, body: boom, at: start}}
 modal: {{count: 10, at: start}}
