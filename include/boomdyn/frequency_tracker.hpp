@@ -37,6 +37,7 @@ struct FollowedMode {
 struct TrackedModes {
   double t = 0;
   std::vector<double> frequencyHz; // the `count` lowest modes found, ascending
+  std::vector<EnergyShares> energyShares; // their energy shares (mode_labels.hpp; all ranks)
   std::vector<FollowedMode> followed; // every followed mode, in the order of tracking.follow
   // The first followed mode (= followed[0]), the fields of /tracking/tracked_hz etc.
   double trackedHz = 0;            // the followed mode

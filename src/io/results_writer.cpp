@@ -544,8 +544,11 @@ void ResultsWriter::appendFollowed(const TrackedModes &m, bool writeShape)
     file_->appendRow("/tracking/followed_damped_mac", dampedMac.data(), n);
   }
   if (writeShape) file_->appendRow("/tracking/followed_shapes", shapes.data(), shapes.size());
-  // The followed modes' energy shares, n x kinds per row (docs/output.md).
+  // Every reported mode's and the followed modes' energy shares, modes x kinds per row (docs/output.md).
   std::vector<double> shares;
+  for (const EnergyShares &e : m.energyShares) shares.insert(shares.end(), e.begin(), e.end());
+  file_->appendRow("/tracking/energy_shares", shares.data(), shares.size());
+  shares.clear();
   for (const FollowedMode &f : m.followed) shares.insert(shares.end(), f.energyShares.begin(), f.energyShares.end());
   file_->appendRow("/tracking/followed_energy_shares", shares.data(), shares.size());
   if (!file_->exists("/tracking/energy_kinds")) file_->writeStrings("/tracking/energy_kinds", modeEnergyKindNames());

@@ -229,6 +229,7 @@ tracking: {interval: 0.02, count: 6, follow: 3}
         hz = np.array(f["tracking/followed_hz"])
         mac = np.array(f["tracking/followed_mac"])
         shares = np.array(f["tracking/followed_energy_shares"])
+        every = np.array(f["tracking/energy_shares"])
         kinds = [k.decode() if isinstance(k, bytes) else k for k in f["tracking/energy_kinds"][()]]
     check(len(t) >= 20, "the luffing beam's tracking made %d analyses" % len(t))
     second = np.abs(hz[2:] - 2 * hz[1:-1] + hz[:-2]) / hz[1:-1]
@@ -236,6 +237,9 @@ tracking: {interval: 0.02, count: 6, follow: 3}
         np.round(hz[0], 4), np.round(hz[-1], 4), mac.min(), second.max()))
     print("luffing: labels at the end: %s" % [
         "%s %.3f" % (kinds[int(np.argmax(s))], s.max()) for s in shares[-1].reshape(-1, len(kinds))])
+    every = every.reshape(len(t), 6, len(kinds))
+    print("luffing: all 6 modes at the end: %s" % ["%s %.3f" % (kinds[int(np.argmax(x))], x.max()) for x in every[-1]])
+    check(np.abs(every.sum(axis=2) - 1).max() < 1e-12, "every tracked mode's shares sum to 1 (/tracking/energy_shares)")
     check(mac.min() > 0.99, "every followed mode keeps its identity along the luffing (MAC > 0.99)")
     check(second.max() < 1e-3, "the followed frequencies vary smoothly (second differences < 1e-3)")
     check(np.ptp(hz[:, 0]) > 1e-4 * hz[0, 0], "the luffing changes the first followed frequency")
