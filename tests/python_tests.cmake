@@ -101,3 +101,8 @@ set_tests_properties(docs.options_match_help_self_test PROPERTIES LABELS docs)
 boomdyn_script_test(docs.tutorial docs/test_tutorial.py "docs;mpi")
 set_tests_properties(docs.tutorial PROPERTIES PROCESSORS 2
   ENVIRONMENT "OMPI_ALLOW_RUN_AS_ROOT=1;OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1")
+# Modal analysis and tracking of spatial scenes with the mode labels
+# (closed forms, 2 ranks, -boom_spatial; docs/model.md §5).
+boomdyn_script_test(regression.spatial_modal regression/test_spatial_modal.py "regression;mpi")
+set_tests_properties(regression.spatial_modal PROPERTIES PROCESSORS 2
+  ENVIRONMENT "OMPI_ALLOW_RUN_AS_ROOT=1;OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1")

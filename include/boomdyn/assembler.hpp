@@ -71,6 +71,12 @@ public:
   // work[k] = dq . f_k, summed item by item. Sets over the same items (two
   // states of one model) in one pass; otherwise one pass per set.
   PetscErrorCode dampingWork(const DampingForces *const forces[], int count, Vec dq, PetscReal work[]);
+  // The strain energy 1/2 s^T K s of a mode shape s (layout of x, the
+  // multiplier part ignored) by kind, summed over the items and the ranks
+  // (WorkItem::modeEnergy; collective): K is the pencil's stiffness at the
+  // state x = [q | lambda_hat] with ctx's time and sigma (pencilState),
+  // v = a = 0. Leaves the offsets at zero.
+  PetscErrorCode modeEnergy(const AssemblyContext &ctx, Vec x, Vec shape, ModeEnergy *out);
   // Mean diagonal of mass and stiffness over position coordinates at q = x.
   PetscErrorCode characteristicScales(Vec x, PetscReal *mass, PetscReal *stiffness);
 

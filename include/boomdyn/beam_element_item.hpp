@@ -33,6 +33,10 @@ public:
   void scales(const ItemValues &in, double &massDiag, double &stiffDiag, int &count) const override;
   bool physicalDamping() const override;
   bool dampingForce(const ItemValues &in, double *f) const override;
+  // Mode labels: the element's strain energy by strain (axial, bending),
+  // its stress stiffening as geometric (docs/model.md §5).
+  void modeEnergy(const PencilPass &stiffness, int n, const double *shape, double *scratch,
+                  ModeEnergy &out) const override;
 
   // residual = M a + f - loadFactor g (inertia, internal force f, gravity g).
   void inertiaAndForces(const double *a, const ancf::Vec8 &f, double loadFactor, double *residual) const;

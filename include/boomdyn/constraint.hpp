@@ -37,6 +37,9 @@ public:
   virtual void accelerationBreakpoints(std::vector<double> &out) const { (void)out; }
   // Unit of the rows, for messages ("m", "rad", ...).
   virtual const char *rowUnit(int row) const { (void)row; return "m"; }
+  // The kind its stiffness lambda . d2C/dq2 counts as in the mode labels
+  // (ConstraintItem::modeEnergyKind): geometric unless it says otherwise.
+  virtual ModeEnergyKind modeEnergyKind() const { return ModeEnergyKind::Geometric; }
 };
 
 } // namespace boomdyn

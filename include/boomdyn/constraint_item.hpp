@@ -20,6 +20,7 @@ public:
   // in.lambda holds the unscaled multipliers here.
   void energy(const AssemblyContext &ctx, const ItemValues &in, EnergyParts &e) const override;
   double constraintViolation(const AssemblyContext &ctx, const ItemValues &in) const override;
+  ModeEnergyKind modeEnergyKind() const override { return constraint_->modeEnergyKind(); }
   const Constraint &constraint() const { return *constraint_; }
   PetscInt firstRow() const { return firstRow_; }
 

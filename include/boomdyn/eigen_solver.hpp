@@ -9,6 +9,7 @@
 
 #include "boomdyn/assembler.hpp"
 #include "boomdyn/gather.hpp"
+#include "boomdyn/mode_labels.hpp"
 #include "boomdyn/petsc_handle.hpp"
 
 #include <functional>
@@ -28,6 +29,9 @@ struct ModalResult {
   std::vector<double> undampedEquivalentHz; // |lambda| / 2 pi
   std::vector<double> dampingRatio;      // -Re lambda / |lambda|; > 1: overdamped
   std::vector<double> decayRates;        // two per damped mode, 1/s, slower first (row-major, k x 2)
+  // Energy-split labels (ModalOptions::energyShares; all ranks): per mode
+  // the share of each ModeEnergyKind in its strain energy (mode_labels.hpp).
+  std::vector<EnergyShares> energyShares;
   // Eigenvectors in the layout of x with the multiplier part zeroed (only
   // when asked for; owned here).
   std::vector<PetscHandle<Vec>> vectors;
@@ -42,6 +46,7 @@ struct ModalOptions {
   double target = -1.0;
   Vec initialGuess = nullptr; // warm start (layout of x), e.g. the previous mode
   bool keepVectors = false;   // return the eigenvectors in ModalResult::vectors
+  bool energyShares = false;  // fill ModalResult::energyShares (one pass over the items per mode)
   // Asked at every iteration of the eigen-solver (SLEPc's stopping test), so
   // that SIGINT/SIGTERM end a long solve within one iteration; collective,
   // must answer alike on every rank. True: the solve ends at once and the

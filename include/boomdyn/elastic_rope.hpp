@@ -20,6 +20,7 @@ namespace boomdyn {
 
 class ElasticRope : public WorkItem {
 public:
+  ModeEnergyKind modeEnergyKind() const override { return ModeEnergyKind::Rope; } // mode labels
   // payout: dL0(t) [m], the winch's paid-out length (hoisting: decreasing).
   ElasticRope(std::string name, RopePath path, double EA, double restLength, double damping,
               TimeFunction payout = TimeFunction());

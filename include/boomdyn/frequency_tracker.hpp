@@ -30,11 +30,14 @@ struct FollowedMode {
   std::vector<double> shape; // its shape (rank 0), max-norm 1
   // Damped models: the damped mode assigned to it by MAC (rank 0; NaN, 0: none).
   double dampedHz = 0, dampingRatio = 0, dampedMac = 0;
+  // The share of each kind in its strain energy (mode_labels.hpp; all ranks).
+  EnergyShares energyShares{};
 };
 
 struct TrackedModes {
   double t = 0;
   std::vector<double> frequencyHz; // the `count` lowest modes found, ascending
+  std::vector<EnergyShares> energyShares; // their energy shares (mode_labels.hpp; all ranks)
   std::vector<FollowedMode> followed; // every followed mode, in the order of tracking.follow
   // The first followed mode (= followed[0]), the fields of /tracking/tracked_hz etc.
   double trackedHz = 0;            // the followed mode

@@ -16,6 +16,7 @@ namespace boomdyn {
 
 class GroundContact : public WorkItem {
 public:
+  ModeEnergyKind modeEnergyKind() const override { return ModeEnergyKind::Contact; } // mode labels
   GroundContact(std::string name, const Body &body, double s, double level, double stiffness, double damping);
   std::string name() const override { return name_; }
   void coordinates(std::vector<PetscInt> &dofs) const override;

@@ -38,6 +38,7 @@ namespace boomdyn {
 
 class HydraulicCylinderItem : public WorkItem {
 public:
+  ModeEnergyKind modeEnergyKind() const override { return ModeEnergyKind::Hydraulic; } // mode labels
   struct End {
     const Body *body = nullptr; // null: ground point
     double s = 0;

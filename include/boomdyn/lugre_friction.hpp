@@ -45,6 +45,7 @@ class PadContact;
 
 class LuGreFriction : public WorkItem {
 public:
+  ModeEnergyKind modeEnergyKind() const override { return ModeEnergyKind::Friction; } // mode labels
   LuGreFriction(std::shared_ptr<const SlidingJoint> joint, PetscInt zIndex, PetscInt normalRow, const FrictionSpec &spec);
   // Friction at a padded joint: the normal force is the pad's |f|.
   LuGreFriction(std::shared_ptr<const SlidingJoint> joint, PetscInt zIndex, const PadContact *pad,

@@ -38,6 +38,7 @@ struct PadState {
 
 class PadContact : public WorkItem {
 public:
+  ModeEnergyKind modeEnergyKind() const override { return ModeEnergyKind::Contact; } // mode labels
   PadContact(std::shared_ptr<const SlidingJoint> joint, const PadSpec &spec);
   std::string name() const override { return joint_->name() + ".pad"; }
   void coordinates(std::vector<PetscInt> &dofs) const override { joint_->coordinates(dofs); }

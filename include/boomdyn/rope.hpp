@@ -16,6 +16,7 @@ namespace boomdyn {
 
 class Rope : public Constraint {
 public:
+  ModeEnergyKind modeEnergyKind() const override { return ModeEnergyKind::Rope; } // mode labels
   using Point = RopePath::Point;
   Rope(std::string name, Point p, Point q, Point r, double length);
   std::string name() const override { return name_; }

@@ -63,6 +63,11 @@ public:
   bool physicalDamping() const override { return beam_->section().damped(); }
   bool dampingForce(const ItemValues &in, double *f) const override;
   void scales(const ItemValues &in, double &massDiag, double &stiffDiag, int &count) const override;
+  // Mode labels: the element's strain energy by strain (axial, bending about d3 = in the plane of the
+  // axis and `up`, bending about d2 = out of it, torsion),
+  // its stress stiffening as geometric (docs/model.md §5).
+  void modeEnergy(const PencilPass &stiffness, int n, const double *shape, double *scratch,
+                  ModeEnergy &out) const override;
 
 private:
   const SpatialAncfBeam *beam_;

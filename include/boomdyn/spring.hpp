@@ -17,6 +17,7 @@ namespace boomdyn {
 
 class Spring : public WorkItem {
 public:
+  ModeEnergyKind modeEnergyKind() const override { return ModeEnergyKind::Spring; } // mode labels
   struct End {
     const Body *body = nullptr; // null: ground point
     double s = 0;

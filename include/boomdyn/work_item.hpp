@@ -93,6 +93,31 @@ struct EnergyParts {
   double roundoff = 0;
 };
 
+// The kinds of strain energy a mode is labelled by (docs/model.md §5, "Mode
+// labels"): beams split theirs by strain (axial, bending about the
+// section's d3 axis = in the plane of the axis and `up`, in planar models
+// in the model's plane; bending about d2 = out of that plane; torsion) and
+// report the rest of their tangent (stress stiffening) as geometric; every
+// other item reports all of its stiffness as one kind (modeEnergyKind()).
+enum class ModeEnergyKind : int {
+  Axial, BendingInPlane, BendingOutOfPlane, Torsion, Spring, Rope, Contact, Hydraulic, Friction, Geometric
+};
+constexpr int kModeEnergyKinds = 10;
+// The names used in the output (/modal/energy_kinds, the log's labels).
+inline const char *modeEnergyKindName(int kind)
+{
+  static const char *const names[kModeEnergyKinds] = {"axial",   "bending_in_plane", "bending_out_of_plane",
+                                                      "torsion", "spring",           "rope",
+                                                      "contact", "hydraulic",        "friction",
+                                                      "geometric"};
+  return kind >= 0 && kind < kModeEnergyKinds ? names[kind] : "?";
+}
+// 1/2 s^T K s of a mode shape s by kind (J for a shape in m and rad).
+struct ModeEnergy {
+  double kind[kModeEnergyKinds] = {};
+  void add(ModeEnergyKind k, double e) { kind[static_cast<int>(k)] += e; }
+};
+
 // One of the eigen-analysis' three Jacobian passes over an item
 // (Assembler::evaluatePencil): its context, the item's values under that
 // pass's map, and its n x n block (row-major, zeroed on entry; null: the
@@ -169,6 +194,20 @@ public:
   // is not finite), for the message of a run that fails; empty if none.
   // The item makes its residual NaN then, so that no step is accepted.
   virtual std::string fault() const { return {}; }
+  // The strain energy 1/2 s^T K s of a mode shape s in this item, by kind,
+  // added to out (the mode labels, docs/model.md §5). stiffness: the
+  // pencil's stiffness pass at the state (ctx with cQ = 1, pencil; in: q at
+  // the state, v = a = 0, the multipliers) with stiffness.J an n x n block
+  // zeroed on entry; shape: the mode's values of the item's n unknowns
+  // (zero on its multiplier rows); scratch: n entries. The default forms
+  // the stiffness block (evaluate()) and adds its 1/2 s^T J s to
+  // modeEnergyKind(); beam elements split theirs by strain.
+  virtual void modeEnergy(const PencilPass &stiffness, int n, const double *shape, double *scratch,
+                          ModeEnergy &out) const;
+  // The kind the default modeEnergy() reports the item's whole stiffness as:
+  // geometric (gravity and joint reactions through the constraints'
+  // curvature, follower loads) unless the item says otherwise.
+  virtual ModeEnergyKind modeEnergyKind() const { return ModeEnergyKind::Geometric; }
   // Contribution to a characteristic mass / stiffness (diagonal sums) used to scale multipliers.
   virtual void scales(const ItemValues &, double &massDiag, double &stiffDiag, int &count) const
   {
@@ -183,6 +222,27 @@ inline void WorkItem::evaluatePencil(const PencilPass (&pass)[kPencilPasses], in
     std::fill(scratch, scratch + n, 0.0);
     evaluate(p.ctx, p.in, scratch, p.J);
   }
+}
+
+// 1/2 s^T J s of an n x n row-major block.
+inline double halfQuadraticForm(const double *J, int n, const double *s)
+{
+  double e = 0;
+  for (int i = 0; i < n; ++i) {
+    if (s[i] == 0) continue;
+    double row = 0;
+    for (int j = 0; j < n; ++j) row += J[i * n + j] * s[j];
+    e += s[i] * row;
+  }
+  return 0.5 * e;
+}
+
+inline void WorkItem::modeEnergy(const PencilPass &stiffness, int n, const double *shape, double *scratch,
+                                 ModeEnergy &out) const
+{
+  std::fill(scratch, scratch + n, 0.0);
+  evaluate(stiffness.ctx, stiffness.in, scratch, stiffness.J);
+  out.add(modeEnergyKind(), halfQuadraticForm(stiffness.J, n, shape));
 }
 
 inline void WorkItem::evaluateResiduals(const AssemblyContext &ctx, const WorkItem *const items[],

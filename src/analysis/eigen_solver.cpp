@@ -320,6 +320,7 @@ PetscErrorCode solveModes(Assembler &assembler, double t, Vec q, Vec lambda, int
   *result = ModalResult{};
   PetscCall(VecDuplicate(xr, zero.address()));
   PetscCall(VecSet(zero, 0.0));
+  double sharesSigma = 0; // the constraint scale of the labels' state, computed by the first mode's
   for (int k = 0; k < count; ++k) {
     const PetscInt i = order[k];
     PetscScalar w;
@@ -380,6 +381,11 @@ PetscErrorCode solveModes(Assembler &assembler, double t, Vec q, Vec lambda, int
       PetscCall(VecCopy(xr, v));
       PetscCall(assembler.copyMultipliers(zero, v, 0.0)); // shape only: drop the multiplier part
       result->vectors.push_back(std::move(v));
+    }
+    if (options.energyShares) {
+      EnergyShares shares;
+      PetscCall(modeEnergyShares(assembler, t, q, lambda, xr, &shares, &sharesSigma));
+      result->energyShares.push_back(shares);
     }
     result->omega2.push_back(w);
     result->frequencyHz.push_back(std::sqrt(std::max(w, 0.0)) / (2.0 * M_PI));

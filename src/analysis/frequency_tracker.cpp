@@ -219,8 +219,13 @@ PetscErrorCode FrequencyTracker::analyze(double t, Vec q, Vec lambda, TrackedMod
   }
   out->t = t;
   out->frequencyHz.clear();
-  for (std::size_t k = 0; k < std::min<std::size_t>(count_, omega2.size()); ++k)
+  out->energyShares.clear();
+  double labelSigma = 0; // the labels' constraint scale, computed by the first mode's
+  for (std::size_t k = 0; k < std::min<std::size_t>(count_, omega2.size()); ++k) {
     out->frequencyHz.push_back(std::sqrt(std::max(omega2[k], 0.0)) / (2.0 * M_PI));
+    out->energyShares.emplace_back();
+    PetscCall(modeEnergyShares(assembler_, t, q, lambda, basis_[k], &out->energyShares.back(), &labelSigma));
+  }
   out->followed.assign(follow_, FollowedMode{});
   int highest = 0;
   for (int j = 0; j < follow_; ++j) {
@@ -233,6 +238,9 @@ PetscErrorCode FrequencyTracker::analyze(double t, Vec q, Vec lambda, TrackedMod
     f.mac = macs[j];
     f.index = k;
     PetscCall(gatherShape(assembler_, previous_[j], &f.shape, &shapeGather_));
+    // A followed mode beyond the reported ones gets its own pass.
+    if (k < (int)out->energyShares.size()) f.energyShares = out->energyShares[k];
+    else PetscCall(modeEnergyShares(assembler_, t, q, lambda, previous_[j], &f.energyShares, &labelSigma));
     highest = std::max(highest, k);
   }
   wanted_ = highest + 2;

@@ -318,3 +318,31 @@ void BeamElementItem::scales(const ItemValues &in, double &massDiag, double &sti
 }
 
 } // namespace boomdyn
+
+namespace boomdyn {
+
+void BeamElementItem::modeEnergy(const PencilPass &stiffness, int n, const double *shape, double *scratch,
+                                 ModeEnergy &out) const
+{
+  // The whole tangent's 1/2 s^T K s, and its material part strain by strain:
+  // the Kelvin-Voigt power of the rate edot = s with a unit retardation time
+  // on one strain only is s^T K_material s of that strain (the damping law
+  // is eta times the material stiffness, axial projection included), so the
+  // kernel that integrates it serves as the split. The rest of the tangent
+  // (N d2eps/de2 + M d2K/de2: stress stiffening) is geometric.
+  ModeEnergy whole;
+  WorkItem::modeEnergy(stiffness, n, shape, scratch, whole);
+  const double total = whole.kind[static_cast<int>(ModeEnergyKind::Geometric)];
+  const ancf::Vec8 q = Eigen::Map<const ancf::Vec8>(stiffness.in.q), s = Eigen::Map<const ancf::Vec8>(shape);
+  ancf::Section axial = beam_->section(), bending = beam_->section();
+  axial.etaA = 1, axial.etaB = 0, bending.etaA = 0, bending.etaB = 1;
+  ancf::Vec8 fd;
+  const double l = beam_->elementLength();
+  const double ea = 0.5 * ancf::dampingForce(axial, l, q, s, fd, nullptr, nullptr);
+  const double eb = 0.5 * ancf::dampingForce(bending, l, q, s, fd, nullptr, nullptr);
+  out.add(ModeEnergyKind::Axial, ea);
+  out.add(ModeEnergyKind::BendingInPlane, eb);
+  out.add(ModeEnergyKind::Geometric, total - ea - eb);
+}
+
+} // namespace boomdyn

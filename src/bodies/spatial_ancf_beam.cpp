@@ -189,3 +189,39 @@ void SpatialBeamElementItem::scales(const ItemValues &in, double &massDiag, doub
 }
 
 } // namespace boomdyn
+
+namespace boomdyn {
+
+void SpatialBeamElementItem::modeEnergy(const PencilPass &stiffness, int n, const double *shape, double *scratch,
+                                        ModeEnergy &out) const
+{
+  // As the planar element (BeamElementItem::modeEnergy): the material part
+  // of 1/2 s^T K s strain by strain as half the Kelvin-Voigt power of the
+  // rate s with a unit retardation time on that strain alone (EIy or EIz
+  // set to zero to separate the two curvatures), the rest geometric. In the
+  // plane of the axis and `up` (d1, d2) the axis bends about d3 (K3, EIz):
+  // in-plane; about d2 (K2, EIy): out of plane.
+  ModeEnergy whole;
+  WorkItem::modeEnergy(stiffness, n, shape, scratch, whole);
+  const double total = whole.kind[static_cast<int>(ModeEnergyKind::Geometric)];
+  const sb::Vec14 q = Eigen::Map<const sb::Vec14>(stiffness.in.q), s = Eigen::Map<const sb::Vec14>(shape);
+  const sb::Geometry &geo = beam_->geometry();
+  sb::Section axial = beam_->section();
+  axial.etaA = 1, axial.etaB = 0, axial.etaT = 0;
+  sb::Section torsion = axial, inPlane = axial, outOfPlane = axial;
+  torsion.etaA = 0, torsion.etaT = 1;
+  inPlane.etaA = 0, inPlane.etaB = 1, inPlane.EIy = 0;
+  outOfPlane.etaA = 0, outOfPlane.etaB = 1, outOfPlane.EIz = 0;
+  sb::Vec14 fd;
+  const double parts[4] = {0.5 * sb::dampingForce(axial, geo, q, s, fd, nullptr, nullptr),
+                           0.5 * sb::dampingForce(inPlane, geo, q, s, fd, nullptr, nullptr),
+                           0.5 * sb::dampingForce(outOfPlane, geo, q, s, fd, nullptr, nullptr),
+                           0.5 * sb::dampingForce(torsion, geo, q, s, fd, nullptr, nullptr)};
+  out.add(ModeEnergyKind::Axial, parts[0]);
+  out.add(ModeEnergyKind::BendingInPlane, parts[1]);
+  out.add(ModeEnergyKind::BendingOutOfPlane, parts[2]);
+  out.add(ModeEnergyKind::Torsion, parts[3]);
+  out.add(ModeEnergyKind::Geometric, total - parts[0] - parts[1] - parts[2] - parts[3]);
+}
+
+} // namespace boomdyn

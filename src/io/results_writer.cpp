@@ -424,6 +424,15 @@ void ResultsWriter::writeModeArrays(double t, const ModalResult &modes)
   std::vector<double> shapes;
   for (const auto &s : modes.shapes) shapes.insert(shapes.end(), s.begin(), s.end());
   file_->writeArray("/modal/shapes", shapes, {k, nq});
+  if (modes.energyShares.size() == k) { // the mode labels (docs/output.md)
+    std::vector<double> shares;
+    std::vector<std::string> labels;
+    for (const EnergyShares &e : modes.energyShares)
+      shares.insert(shares.end(), e.begin(), e.end()), labels.push_back(modeLabel(e));
+    file_->writeArray("/modal/energy_shares", shares, {k, static_cast<std::size_t>(kModeEnergyKinds)});
+    file_->writeStrings("/modal/energy_kinds", modeEnergyKindNames());
+    file_->writeStrings("/modal/labels", labels);
+  }
   if (!modes.dampingRatio.empty()) { // a damped model (docs/output.md)
     file_->writeArray("/modal/damped_frequencies_hz", modes.dampedFrequencyHz, {k});
     file_->writeArray("/modal/undamped_equivalent_hz", modes.undampedEquivalentHz, {k});
@@ -535,6 +544,14 @@ void ResultsWriter::appendFollowed(const TrackedModes &m, bool writeShape)
     file_->appendRow("/tracking/followed_damped_mac", dampedMac.data(), n);
   }
   if (writeShape) file_->appendRow("/tracking/followed_shapes", shapes.data(), shapes.size());
+  // Every reported mode's and the followed modes' energy shares, modes x kinds per row (docs/output.md).
+  std::vector<double> shares;
+  for (const EnergyShares &e : m.energyShares) shares.insert(shares.end(), e.begin(), e.end());
+  file_->appendRow("/tracking/energy_shares", shares.data(), shares.size());
+  shares.clear();
+  for (const FollowedMode &f : m.followed) shares.insert(shares.end(), f.energyShares.begin(), f.energyShares.end());
+  file_->appendRow("/tracking/followed_energy_shares", shares.data(), shares.size());
+  if (!file_->exists("/tracking/energy_kinds")) file_->writeStrings("/tracking/energy_kinds", modeEnergyKindNames());
 }
 
 PetscErrorCode ResultsWriter::finish(const std::string &status, PetscInt steps, PetscInt rejected, double wallTime,

@@ -646,3 +646,44 @@ PetscErrorCode Assembler::copyMultipliers(Vec src, Vec dst, PetscReal scale) con
 }
 
 } // namespace boomdyn
+
+namespace boomdyn {
+
+PetscErrorCode Assembler::modeEnergy(const AssemblyContext &context, Vec x, Vec shape, ModeEnergy *out)
+{
+  PetscFunctionBeginUser;
+  // The shape's local values through the offsets (qc_), the state's through
+  // beginLocal; each item gets the stiffness pass's values of the pencil
+  // (q = x, v = a = 0, its multipliers) and the shape on its coordinates.
+  PetscCall(setOffsets(shape, nullptr, nullptr));
+  PencilPass pass;
+  pass.ctx = context;
+  pass.ctx.kin = {1.0, 0.0, 0.0, 0.0};
+  pass.ctx.residualWanted = false;
+  pass.ctx.pencil = true;
+  PetscCall(beginLocal(pass.ctx, x));
+  ModeEnergy local;
+  std::vector<double> s(slot_), zeros(slot_, 0.0), block(slot_ * slot_);
+  pass.in.q = bq_.data();
+  pass.in.v = zeros.data();
+  pass.in.a = zeros.data();
+  for (std::size_t k = 0; k < items_.size(); ++k) {
+    const int begin = itemStart_[k], n = itemStart_[k + 1] - begin, nc = itemCoords_[k];
+    for (int i = 0; i < n; ++i) {
+      const PetscInt li = itemLocal_[begin + i];
+      bq_[i] = xl_[li];
+      bl_[i] = xl_[li];
+      s[i] = i < nc ? qc_[li] : 0.0;
+    }
+    pass.in.lambda = bl_.data() + nc;
+    std::fill(block.begin(), block.begin() + n * n, 0.0);
+    pass.J = block.data();
+    items_[k]->modeEnergy(pass, n, s.data(), br_.data(), local);
+  }
+  PetscCall(endLocal());
+  PetscCall(setOffsets(nullptr, nullptr, nullptr));
+  PetscCallMPI(MPI_Allreduce(local.kind, out->kind, kModeEnergyKinds, MPI_DOUBLE, MPI_SUM, comm_));
+  PetscFunctionReturn(0);
+}
+
+} // namespace boomdyn

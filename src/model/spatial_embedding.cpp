@@ -49,9 +49,8 @@ Scene spatialEmbedding(const Scene &planar)
   if (!planar.springs.empty()) refuse(planar.springs[0].mark, "spring '" + planar.springs[0].name + "'");
   if (!planar.output.sensors.empty() || !planar.output.frames.empty())
     refuse(planar.output.sensors.empty() ? planar.output.frames[0].mark : planar.output.sensors[0].mark, "a sensor");
-  if (planar.tracking.interval > 0 || planar.modal.count > 0 || planar.analysis == Scene::Analysis::Modal)
-    throw SpatialEmbeddingError(planar.file + ": -boom_spatial: modal analysis and frequency tracking of spatial "
-                                              "models are not available yet");
+  // Modal analysis and tracking carry over: the in-plane modes are the
+  // planar ones, the out-of-plane modes come in addition (docs/model.md §5).
   for (BodySpec &b : s.bodies) {
     if (b.type == BodySpec::Type::AncfBeam) {
       // A spatial beam with its section's z axis normal to the plane: the

@@ -106,6 +106,7 @@ PetscErrorCode Simulation::modalAnalysis(double t, Vec q, Vec lambda, const std:
   ModalOptions options;
   options.stop = stop;
   options.keepVectors = damped; // the damped analysis tries them first (classical damping)
+  options.energyShares = true;  // the mode labels (docs/model.md §5)
   PetscCall(solveModes(assembler_, t, q, lambda, scene().modal.count, &modes, options));
   *interrupted = modes.interrupted;
   if (*interrupted) PetscFunctionReturn(0);
@@ -131,8 +132,8 @@ PetscErrorCode Simulation::modalAnalysis(double t, Vec q, Vec lambda, const std:
   if (!options_.quiet) {
     PetscCall(PetscPrintf(comm_, "modes at t = %g s:\n", t));
     for (std::size_t k = 0; k < modes.frequencyHz.size(); ++k) {
-      PetscCall(PetscPrintf(comm_, "  mode %2zu  f = %12.6f Hz  (relative residual %.1e)", k + 1,
-                            modes.frequencyHz[k], modes.residuals[k]));
+      PetscCall(PetscPrintf(comm_, "  mode %2zu  f = %12.6f Hz  (relative residual %.1e)  %s", k + 1,
+                            modes.frequencyHz[k], modes.residuals[k], modeLabel(modes.energyShares[k]).c_str()));
       if (damped && modes.dampedFrequencyHz[k] > 0)
         PetscCall(PetscPrintf(comm_, "  damped: f_d = %12.6f Hz, zeta = %.6f", modes.dampedFrequencyHz[k],
                               modes.dampingRatio[k]));
