@@ -2,6 +2,8 @@
 // docs/model.md §4.7) on hand-made iterates of a block on a rail with LuGre
 // friction: a friction-state increment that PETSc's test on the whole vector
 // accepts is refused, and every block is judged on its own size.
+#include "cylinder_block.hpp"
+
 #include "boomdyn/assembler.hpp"
 #include "boomdyn/block_convergence.hpp"
 #include "boomdyn/lugre_friction.hpp"
@@ -140,21 +142,7 @@ TEST(BlockConvergence, ResidualsReducedInEveryBlockConverge)
 // are not frictional joints in the output's layout.
 TEST(BlockConvergence, NamesACylinderPressureThatHolds)
 {
-  Model model(parseScene(R"(
-name: cylinder-block
-analysis: dynamic
-gravity: [0, -9.81]
-bodies:
-  - {name: block, type: rigid, length: 0.1, origin: [-0.05, 1.0], section: {rhoA: 10000}}
-constraints:
-  - {type: angle_drive, body: block, at: 0.05, angle: 0}
-  - {type: hydraulic_cylinder, name: lift, body: block, at: 0.05, base_point: [0, 0], piston_diameter: 0.1,
-     rod_diameter: 0.056, stroke: 0.6, closed_length: 0.7, dead_volume_piston: 2.0e-4, dead_volume_rod: 1.5e-4,
-     bulk_modulus_oil: 1.65e9, valve: closed, initial_pressure_piston: 1.0e+7}
-springs:
-  - {body: block, at: 0.05, point: [10.0, 1.0], stiffness: 1.0e+6}
-dynamic: {t_end: 1, dt: 1.0e-3}
-)",
+  Model model(parseScene(boomdyn::testing::cylinder_block::scene("valve: closed, initial_pressure_piston: 1.0e+7", "{t_end: 1, dt: 1.0e-3}"),
                          "cylinder-block.yaml"));
   EXPECT_TRUE(model.frictionJointNames().empty());
   ASSERT_EQ(model.firstOrderNames().size(), 3u);

@@ -11,11 +11,11 @@
 //    zeta = c / (2 sqrt(k_h m)), omega_d = omega_n sqrt(1 - zeta^2). The
 //    damped pencil (SLEPc PEP) and the tracking's damped refinement (no
 //    fall-back to the full solve) must give both within 1e-8;
+#include "cylinder_block.hpp"
 #include "support.hpp"
 
 #include "boomdyn/damped_eigen_solver.hpp"
 #include "boomdyn/frequency_tracker.hpp"
-#include "boomdyn/static_solver.hpp"
 
 #include <slepcsys.h>
 
@@ -27,52 +27,8 @@ using namespace boomdyn::testing;
 
 namespace {
 
-constexpr double m = 1000.0, D = 0.1, d = 0.056, L = 0.6, s0 = 0.3;
-constexpr double Vd1 = 2e-4, Vh1 = 3e-4, Vd2 = 1.5e-4, Vh2 = 2.5e-4, Boil = 1.65e9;
-const double A1 = 0.25 * M_PI * D * D, A2 = 0.25 * M_PI * (D * D - d * d);
-const double C1 = (Vd1 + Vh1 + A1 * s0) / Boil, C2 = (Vd2 + Vh2 + A2 * (L - s0)) / Boil;
+using namespace boomdyn::testing::cylinder_block;
 const double kh = A1 * A1 / C1 + A2 * A2 / C2;
-
-std::string blockScene(const std::string &cylinder, const std::string &extra = "")
-{
-  return R"(
-name: cylinder-block-modes
-analysis: dynamic
-gravity: [0, -9.81]
-bodies:
-  - {name: block, type: rigid, length: 0.1, origin: [-0.05, 1.0], section: {rhoA: 10000}}
-constraints:
-  - {type: angle_drive, body: block, at: 0.05, angle: 0}
-  - {type: hydraulic_cylinder, name: lift, body: block, at: 0.05, base_point: [0, 0], piston_diameter: 0.1,
-     rod_diameter: 0.056, stroke: 0.6, closed_length: 0.7, dead_volume_piston: 2.0e-4, hose_volume_piston: 3.0e-4,
-     dead_volume_rod: 1.5e-4, hose_volume_rod: 2.5e-4, bulk_modulus_oil: 1.65e9, )" +
-         cylinder + R"(}
-springs:
-  - {body: block, at: 0.05, point: [10.0, 1.0], stiffness: 1.0e+8}
-)" + extra + "dynamic: {t_end: 0.01, dt: 1.0e-3, initial: static}\n";
-}
-
-// A scene's model at its static equilibrium (the `initial: static` start).
-struct Equilibrium {
-  Scene scene;
-  Model model;
-  Assembler assembler;
-  PetscHandle<Vec> x;
-  std::unique_ptr<StaticSolver> statics;
-  explicit Equilibrium(const std::string &text) : scene(parseScene(text, "cylinder-pencil.yaml")), model(scene), assembler(model)
-  {
-    check(assembler.setUp(PETSC_COMM_WORLD));
-    check(assembler.createVector(x.address()));
-    check(assembler.initialState(x));
-    statics = std::make_unique<StaticSolver>(assembler);
-    check(statics->setUp());
-    PetscBool converged;
-    check(statics->solve(0.0, scene.statics.load_steps, x, nullptr, &converged));
-    EXPECT_TRUE(converged);
-    check(SlepcInitialize(nullptr, nullptr, nullptr, nullptr));
-  }
-  Vec multipliers() const { return statics->multipliers(); }
-};
 
 // The damped mode with |lambda| nearest omega.
 int nearest(const DampedModalResult &dm, double omega)
@@ -88,8 +44,10 @@ int nearest(const DampedModalResult &dm, double omega)
 TEST(CylinderPencil, FrictionDampsTheOilColumnLikeTheClosedForm)
 {
   const double cv = 2.0e4, Fc = 150.0, vc = 5e-3, c = cv + Fc / vc;
-  Equilibrium block(blockScene("valve: closed, initial_pressure_rod: 2.0e+6, friction_viscous: 2.0e+4, "
-                               "friction_coulomb: 150, friction_velocity: 5.0e-3"));
+  StaticEquilibrium block(parseScene(cylinder_block::scene("valve: closed, initial_pressure_rod: 2.0e+6, friction_viscous: 2.0e+4, "
+                                          "friction_coulomb: 150, friction_velocity: 5.0e-3",
+                                          "{t_end: 0.01, dt: 1.0e-3, initial: static}", "1.0e+8"),
+                                            "cylinder-pencil.yaml"));
   const double omega = std::sqrt(kh / m), zeta = c / (2 * std::sqrt(kh * m)), omegaD = omega * std::sqrt(1 - zeta * zeta);
 
   // The full PEP solve.
@@ -125,28 +83,18 @@ TEST(CylinderPencil, FrictionDampsTheOilColumnLikeTheClosedForm)
 // friction only take energy out).
 TEST(CylinderPencil, DampedRefinementConvergesOnTheBoomHeldByTheCylinder)
 {
-  Scene scene = readSceneFile(std::string(BOOMDYN_SOURCE_DIR) + "/inputs/hoist_bounce_cylinder.yaml");
-  Model model(scene);
-  Assembler assembler(model);
-  PetscHandle<Vec> x;
-  check(assembler.setUp(PETSC_COMM_WORLD));
-  check(assembler.createVector(x.address()));
-  check(assembler.initialState(x));
-  StaticSolver statics(assembler);
-  check(statics.setUp());
-  PetscBool converged;
-  check(statics.solve(0.0, scene.statics.load_steps, x, nullptr, &converged));
-  ASSERT_TRUE(converged);
-  check(SlepcInitialize(nullptr, nullptr, nullptr, nullptr));
-  const int count = scene.tracking.count;
+  StaticEquilibrium boom(readSceneFile(std::string(BOOMDYN_SOURCE_DIR) + "/inputs/hoist_bounce_cylinder.yaml"));
+  Assembler &assembler = boom.assembler;
+  const Vec x = boom.x, multipliers = boom.multipliers();
+  const int count = boom.scene.tracking.count;
   FrequencyTracker tracker(assembler, count);
   TrackedModes tracked;
   DampedModalResult refined, full;
-  check(tracker.analyze(0.0, x, statics.multipliers(), &tracked));
-  check(tracker.analyzeDamped(0.0, x, statics.multipliers(), &tracked, &refined));
+  check(tracker.analyze(0.0, x, multipliers, &tracked));
+  check(tracker.analyzeDamped(0.0, x, multipliers, &tracked, &refined));
   DampedModalOptions options;
   options.allowFewer = true; // as the tracking's full solve
-  check(solveDampedModes(assembler, 0.0, x, statics.multipliers(), count, &full, options));
+  check(solveDampedModes(assembler, 0.0, x, multipliers, count, &full, options));
   EXPECT_TRUE(tracked.dampedRefined);
   ASSERT_EQ(refined.omega.size(), full.omega.size());
   double worstOmega = 0, worstZeta = 0, smallestZeta = HUGE_VAL;
