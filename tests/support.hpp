@@ -276,27 +276,40 @@ struct HandIntegration {
   }
 };
 
-// The modes of a scene at its static equilibrium under its loads at t = 0
-// (like `analysis: modal`) on `comm`; expects the statics to converge.
+// A scene's model at its static equilibrium under its loads at t = 0 (the
+// `initial: static` start, `analysis: modal`) on `comm`; expects the
+// statics to converge.
+struct StaticEquilibrium {
+  Scene scene;
+  Model model;
+  Assembler assembler;
+  PetscHandle<Vec> x;
+  std::unique_ptr<StaticSolver> statics;
+  explicit StaticEquilibrium(Scene s, MPI_Comm comm = PETSC_COMM_WORLD)
+    : scene(std::move(s)), model(scene), assembler(model)
+  {
+    check(assembler.setUp(comm));
+    check(assembler.createVector(x.address()));
+    check(assembler.initialState(x));
+    statics = std::make_unique<StaticSolver>(assembler);
+    check(statics->setUp());
+    PetscBool converged;
+    check(statics->solve(0.0, scene.statics.load_steps, x, nullptr, &converged));
+    EXPECT_TRUE(converged);
+    check(SlepcInitialize(nullptr, nullptr, nullptr, nullptr));
+  }
+  Vec multipliers() const { return statics->multipliers(); }
+};
+
+// The modes of a scene at its static equilibrium (StaticEquilibrium).
 // With `state`, the equilibrium too (gathered on rank 0).
 inline ModalResult modesAtStaticEquilibrium(const Scene &scene, int count, MPI_Comm comm = PETSC_COMM_WORLD,
                                             std::vector<double> *state = nullptr)
 {
-  Model model(scene);
-  Assembler assembler(model);
-  PetscHandle<Vec> x;
-  check(assembler.setUp(comm));
-  check(assembler.createVector(x.address()));
-  check(assembler.initialState(x));
-  StaticSolver statics(assembler);
-  check(statics.setUp());
-  PetscBool converged;
-  check(statics.solve(0.0, scene.statics.load_steps, x, nullptr, &converged));
-  EXPECT_TRUE(converged);
-  check(SlepcInitialize(nullptr, nullptr, nullptr, nullptr));
+  StaticEquilibrium equilibrium(scene, comm);
   ModalResult modes;
-  check(solveModes(assembler, 0.0, x, statics.multipliers(), count, &modes));
-  if (state) check(gatherShape(assembler, x, state));
+  check(solveModes(equilibrium.assembler, 0.0, equilibrium.x, equilibrium.multipliers(), count, &modes));
+  if (state) check(gatherShape(equilibrium.assembler, equilibrium.x, state));
   return modes;
 }
 

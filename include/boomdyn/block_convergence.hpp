@@ -26,6 +26,7 @@
 #include <petscsnes.h>
 
 #include <array>
+#include <string>
 #include <vector>
 
 namespace boomdyn {
@@ -34,11 +35,11 @@ class Model;
 
 class BlockConvergence {
 public:
-  enum Block { Bodies = 0, Slacks, FrictionStates, Multipliers, NumBlocks };
+  enum Block { Bodies = 0, Slacks, FirstOrderStates, Multipliers, NumBlocks };
   static const char *blockName(int b);
 
   // Which block each entry of x owned by this rank belongs to (x: a vector
-  // with the solver's layout), and the size floor of the friction states.
+  // with the solver's layout), and the size floor of the first-order states.
   PetscErrorCode setUp(const Model &model, Vec x);
   // The test after Newton iteration `it` at the iterate x with the last
   // increment dx (unused at it = 0) and the residual F.
@@ -50,6 +51,10 @@ public:
   PetscErrorCode step(Vec x, Vec dx);
   // The block that kept the last unconverged iteration going (for -info).
   int lastHolder() const { return lastHolder_; }
+  // When that block was the first-order states: the one with the largest
+  // relative increment, as its owner names it (Model::firstOrderNames(),
+  // e.g. "piston pressure of hydraulic_cylinder 'luffing'"); else empty.
+  const std::string &lastHolderState() const { return lastHolderState_; }
   // Whether the last increment of every block was below the round-off of
   // the increments (100 eps |q|): the iterate cannot get more accurate.
   bool incrementAtRoundoff() const { return incrementAtRoundoff_; }
@@ -63,7 +68,10 @@ public:
 private:
   MPI_Comm comm_ = MPI_COMM_NULL;
   std::vector<unsigned char> block_; // per owned entry
-  std::vector<double> zFloor_;       // per owned entry (friction states only)
+  std::vector<double> zFloor_;       // per owned entry (first-order states only)
+  std::vector<int> stateOf_;         // per owned entry: its position in Model::firstOrderNames(), or -1
+  std::vector<std::string> stateNames_;
+  std::string lastHolderState_;
   // Maximal runs of consecutive entries of one block (begin, end, block):
   // test() sums each run in registers.
   struct Run {

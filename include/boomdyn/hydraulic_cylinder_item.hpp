@@ -23,9 +23,10 @@
 //   held at its initial value s0, the piston pressure is what holds it, the
 //   rod pressure keeps its initial value:
 //                       sigma_s (sigma - s(q)),  sigma_s (sigma - s0),  -C2 (p2 - p2_0),  u - u_cmd(t)
-//   eigen pencil (stiffness pass): closed chambers, -(C1 dp1 + A1 ds) = 0 and
-//   -(C2 dp2 - A2 ds) = 0 (symmetric with the force's dF/dp), sigma and u frozen;
-//   the valve's flow gain (damping) is left out.
+//   eigen pencil (stiffness pass): closed chambers, -rho1 (C1 dp1 + A1 ds) = 0 and
+//   -rho2 (C2 dp2 - A2 ds) = 0 in the scaled unknowns x_pi = dp_i / rho_i,
+//   rho_i = A_i / C_i (symmetric with the force's dF/dx_p), sigma and u frozen;
+//   the damping pass carries the friction's slope; the valve's flow gain is left out.
 //   acceleration level: the states are not unknowns (their rows fix a dummy 0).
 // sigma_s is the constraint-row scale (AssemblyContext::sigma).
 #pragma once

@@ -82,13 +82,18 @@ public:
   // Sliding joints, mutable through a const Model: which track element holds
   // the contact point is topology state that follows the solution.
   const std::vector<std::shared_ptr<SlidingJoint>> &slidingJoints() const { return slidingJoints_; }
-  // Coordinates that are first-order states (LuGre z, hydraulic pressures),
-  // with their owners' names (the friction's joint, the cylinder).
+  // Coordinates that are first-order states (LuGre z, a hydraulic
+  // cylinder's pressures, stroke memory and spool).
   const std::vector<PetscInt> &firstOrderCoordinates() const { return firstOrder_; }
   // Per first-order state, the size below which Newton judges its
-  // increments absolutely (0 for friction states: their floor comes from
+  // increments absolutely (0 for LuGre z: its floor comes from
   // the friction law, BlockConvergence).
   const std::vector<double> &firstOrderFloors() const { return firstOrderFloor_; }
+  // Per first-order state, what it is, as messages name it (its owner gave
+  // it: "LuGre z of sliding_joint 'j2'", "piston pressure of
+  // hydraulic_cylinder 'luffing'").
+  const std::vector<std::string> &firstOrderNames() const { return firstOrderNames_; }
+  // The sliding joints with LuGre friction (one z each), in the order of frictions().
   const std::vector<std::string> &frictionJointNames() const { return frictionJoints_; }
   // The friction elements, in the order of frictionJointNames().
   const std::vector<const LuGreFriction *> &frictions() const { return frictions_; }
@@ -154,6 +159,7 @@ private:
   std::vector<std::pair<PetscInt, double>> slackInitial_; // (slack coordinate or first-order state, initial value)
   std::vector<PetscInt> firstOrder_;
   std::vector<double> firstOrderFloor_;
+  std::vector<std::string> firstOrderNames_;
   std::vector<std::string> frictionJoints_;
   std::vector<const LuGreFriction *> frictions_;
   std::vector<const PadContact *> pads_;

@@ -76,10 +76,12 @@ public:
   PetscInt addCoordinate(double initial);
   // A new first-order state (LuGre z) of the friction at joint `joint`.
   PetscInt addFirstOrderState(const std::string &joint);
-  // A new first-order state of component `owner` (a hydraulic cylinder's
-  // chamber pressure), starting at `initial`; Newton judges its increments
-  // against max(|value|, floor) (BlockConvergence).
-  PetscInt addFirstOrderState(const std::string &owner, double initial, double floor);
+  // A new first-order state of a component that is not a LuGre friction
+  // (a hydraulic cylinder's chamber pressure), starting at `initial`; Newton
+  // judges its increments against max(|value|, floor) (BlockConvergence).
+  // what: the state as the messages name it, e.g. "piston pressure of
+  // hydraulic_cylinder 'luffing'".
+  PetscInt addFirstOrderState(const std::string &what, double initial, double floor);
   // Multiplier rows follow all coordinates: call in the build stage only.
   const ConstraintItem &addConstraint(std::shared_ptr<Constraint> c, const SourceMark &mark);
   void addItem(std::unique_ptr<WorkItem> item) { model_.items_.push_back(std::move(item)); }

@@ -130,7 +130,20 @@ void HydraulicCylinderItem::evaluate(const AssemblyContext &ctx, const ItemValue
   const AD s = l - l0_;
   const AD sdot = ux * (w[1][0] - w[0][0]) + uy * (w[1][1] - w[0][1]);
 
-  const AD p1 = variable(in.q[ip1], ip1, k.cQ), p2 = variable(in.q[ip2], ip2, k.cQ);
+  // The pencil's pressure unknowns are scaled, x_pi = p_i / rho_i with
+  // rho_i = A_i / C_i (Pa per m): a closed chamber's pressure follows the
+  // stroke as dp_i = -+rho_i ds, so x_pi is a length of the stroke's size and
+  // the p rows' entries are the chamber's stiffness A_i^2 / C_i. In Pa, a
+  // mode's pressure entries were ~1e10 times its displacements: its vector
+  // was the pressures alone to round-off, and the damped solves lost the
+  // mechanical part (damping ratios of either sign, the refinement's
+  // functional iteration never met its test).
+  const bool flowSource = valve_.mode == ValveData::Mode::FlowSource;
+  const double A1 = cylinder_.pistonArea, A2 = cylinder_.rodSideArea;
+  double rho[2] = {1.0, 1.0};
+  if (pencil)
+    for (int i = 0; i < 2; ++i) rho[i] = (i == 0 ? A1 : A2) / cylinder_.capacitance(i, in.q[isg]);
+  const AD p1 = variable(in.q[ip1], ip1, k.cQ * rho[0]), p2 = variable(in.q[ip2], ip2, k.cQ * rho[1]);
   const AD sigma = variable(in.q[isg], isg, k.cQ);
   const double t = ctx.t;
   const AD u = lag ? variable(in.q[iu], iu, k.cQ) : constant(valve_.spoolCommand(t));
@@ -139,7 +152,9 @@ void HydraulicCylinderItem::evaluate(const AssemblyContext &ctx, const ItemValue
   double dFf, dFs, dFv;
   const double Ff = cylinder_.friction(sdot.value(), &dFf);
   const double Fs = cylinder_.endStop(s.value(), sdot.value(), &dFs, &dFv);
-  AD force = p1 * cylinder_.pistonArea - p2 * cylinder_.rodSideArea;
+  // A flow source holds p2 at the tank pressure (dp2 = 0): in the pencil p2
+  // does not move the force, as its row does not move with the stroke.
+  AD force = p1 * A1 - (pencil && flowSource ? constant(p2.value()) : p2) * A2;
   force += AD(Fs - Ff, dFs * s.derivatives() + (dFv - dFf) * sdot.derivatives());
   // The impulsive step of a velocity projection is forceless: the cylinder acts through finite forces only.
   if (ctx.velocityLevel) force = constant(0.0);
@@ -154,21 +169,20 @@ void HydraulicCylinderItem::evaluate(const AssemblyContext &ctx, const ItemValue
   }
 
   // The state rows.
-  const double A1 = cylinder_.pistonArea, A2 = cylinder_.rodSideArea;
-  const bool flowSource = valve_.mode == ValveData::Mode::FlowSource;
   if (accelerationLevel) {
     // The states are not unknowns at acceleration level: their x is a dummy 0.
     for (int i : {ip1, ip2, isg}) row[i] = ctx.sigma * variable(in.a[i], i, k.cA);
     if (lag) row[iu] = ctx.sigma * variable(in.a[iu], iu, k.cA);
   } else if (pencil) {
-    // Stiffness pass: closed chambers linearized about the state, symmetric
-    // with the force's dF/dp (C at its value); sigma and u frozen.
+    // Stiffness pass: closed chambers linearized about the state, the rows
+    // scaled by rho_i, symmetric with the force's dF/dx_p = A_i rho_i (C at
+    // its value); sigma and u frozen (rows of the constraint scale).
     if (k.cQ != 0) {
       const double C1 = cylinder_.capacitance(0, in.q[isg]), C2 = cylinder_.capacitance(1, in.q[isg]);
-      row[ip1] = -(C1 * p1 + A1 * s);
-      row[ip2] = flowSource ? AD(-C2 * p2) : AD(-(C2 * p2 - A2 * s));
+      row[ip1] = -rho[0] * (C1 * p1 + A1 * s);
+      row[ip2] = flowSource ? AD(-rho[1] * C2 * p2) : AD(-rho[1] * (C2 * p2 - A2 * s));
       row[isg] = ctx.sigma * sigma;
-      if (lag) row[iu] = u;
+      if (lag) row[iu] = ctx.sigma * u;
     }
   } else if (!dynamics) {
     // Statics: the stroke held at its initial value by the piston pressure,

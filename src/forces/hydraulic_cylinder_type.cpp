@@ -91,12 +91,13 @@ void addStates(const ComponentSpec &spec, ModelBuilder &b)
   const double p1 = spec.numberOr("initial_pressure_piston", pt), p2 = spec.numberOr("initial_pressure_rod", pt);
   const double pressureFloor = std::max({1e5, std::abs(pt), std::abs(spec.numberOr("supply_pressure", 0.0))});
   auto &scratch = b.scratch(spec.type, spec.name);
-  scratch["p1"] = static_cast<double>(b.addFirstOrderState(spec.name, p1, pressureFloor));
-  scratch["p2"] = static_cast<double>(b.addFirstOrderState(spec.name, p2, pressureFloor));
-  scratch["stroke"] = static_cast<double>(b.addFirstOrderState(spec.name, s0, L));
+  const std::string of = " of hydraulic_cylinder '" + spec.name + "'";
+  scratch["p1"] = static_cast<double>(b.addFirstOrderState("piston pressure" + of, p1, pressureFloor));
+  scratch["p2"] = static_cast<double>(b.addFirstOrderState("rod-side pressure" + of, p2, pressureFloor));
+  scratch["stroke"] = static_cast<double>(b.addFirstOrderState("stroke memory" + of, s0, L));
   scratch["s0"] = s0;
   if (valveMode(spec) == ValveData::Mode::Proportional && spec.numberOr("spool_time_constant", 0.0) > 0)
-    scratch["spool"] = static_cast<double>(b.addFirstOrderState(spec.name, spec.function("command").value(0.0), 1.0));
+    scratch["spool"] = static_cast<double>(b.addFirstOrderState("spool position" + of, spec.function("command").value(0.0), 1.0));
 }
 
 void buildCylinder(const ComponentSpec &spec, ModelBuilder &b)

@@ -58,14 +58,16 @@ PetscInt ModelBuilder::addCoordinate(double initial)
 
 PetscInt ModelBuilder::addFirstOrderState(const std::string &joint)
 {
-  return addFirstOrderState(joint, 0.0, 0.0);
+  const PetscInt index = addFirstOrderState("LuGre z of sliding_joint '" + joint + "'", 0.0, 0.0);
+  model_.frictionJoints_.push_back(joint);
+  return index;
 }
 
-PetscInt ModelBuilder::addFirstOrderState(const std::string &owner, double initial, double floor)
+PetscInt ModelBuilder::addFirstOrderState(const std::string &what, double initial, double floor)
 {
   const PetscInt index = model_.nq_++;
   model_.firstOrder_.push_back(index);
-  model_.frictionJoints_.push_back(owner);
+  model_.firstOrderNames_.push_back(what);
   model_.firstOrderFloor_.push_back(floor);
   if (initial != 0) model_.slackInitial_.push_back({index, initial});
   return index;

@@ -12,7 +12,7 @@ namespace boomdyn {
 
 const char *BlockConvergence::blockName(int b)
 {
-  static const char *names[] = {"body coordinates", "slack coordinates", "friction states", "multipliers"};
+  static const char *names[] = {"body coordinates", "slack coordinates", "first-order states", "multipliers"};
   return b >= 0 && b < NumBlocks ? names[b] : "none";
 }
 
@@ -28,18 +28,23 @@ PetscErrorCode BlockConvergence::setUp(const Model &model, Vec x)
   for (PetscInt g = std::max(lo, model.numCoordinates()); g < hi; ++g) block_[g - lo] = Multipliers;
   for (const auto &joint : model.slidingJoints())
     if (owned(joint->slackIndex())) block_[joint->slackIndex() - lo] = Slacks;
-  // Other first-order states (a cylinder's pressures) are judged like the
-  // friction states, entry by entry against their own size.
+  // First-order states (LuGre z, a cylinder's pressures) are judged entry
+  // by entry against their own size: max(|x|, floor), the floor given by
+  // their owner or, for LuGre z, the friction law's bound below.
+  stateOf_.assign(hi - lo, -1);
+  stateNames_ = model.firstOrderNames();
   for (std::size_t k = 0; k < model.firstOrderCoordinates().size(); ++k) {
     const PetscInt g = model.firstOrderCoordinates()[k];
-    if (!owned(g) || !(model.firstOrderFloors()[k] > 0)) continue;
-    block_[g - lo] = FrictionStates;
+    if (!owned(g)) continue;
+    stateOf_[g - lo] = static_cast<int>(k);
+    if (!(model.firstOrderFloors()[k] > 0)) continue;
+    block_[g - lo] = FirstOrderStates;
     zFloor_[g - lo] = model.firstOrderFloors()[k];
   }
   for (const LuGreFriction *f : model.frictions()) {
     const PetscInt g = f->stateIndex();
     if (!owned(g)) continue;
-    block_[g - lo] = FrictionStates;
+    block_[g - lo] = FirstOrderStates;
     zFloor_[g - lo] = std::max(f->spec().mu_s, f->spec().mu_c) / f->spec().sigma0;
   }
   runs_.clear();
@@ -85,7 +90,7 @@ PetscErrorCode BlockConvergence::test(PetscInt it, Vec x, Vec dx, Vec F, PetscRe
   const PetscScalar *xa, *da = nullptr, *fa;
   PetscFunctionBeginUser;
   *reason = SNES_CONVERGED_ITERATING;
-  // Per block: sum of x^2, sum of dx^2, max |F|, and for the friction states
+  // Per block: sum of x^2, sum of dx^2, max |F|, and for the first-order states
   // the largest increment relative to the entry's own size; then the 2-norm
   // of F for PETSc's absolute test. Summed or maximized over the ranks.
   enum { X2 = 0, D2 = NumBlocks, FMAX = 2 * NumBlocks, ZRATIO = 3 * NumBlocks, F2, N };
@@ -99,12 +104,13 @@ PetscErrorCode BlockConvergence::test(PetscInt it, Vec x, Vec dx, Vec F, PetscRe
   // reloaded every partial sum: 33 instructions per unknown on the long
   // boom, a third of a residual's framework cost).
   // After step() (the update x -= dx), the sums of x^2 and dx^2 are
-  // there already: then only F is read (and x, dx at the friction states).
+  // there already: then only F is read (and x, dx at the first-order states).
   const bool stepped = da && haveStepSums_;
   haveStepSums_ = false;
   if (stepped)
     for (int b = 0; b < NumBlocks; ++b) local[X2 + b] = stepSums_[b], local[D2 + b] = stepSums_[NumBlocks + b];
   double f2 = local[F2];
+  int largestState = -1; // the first-order state of local[ZRATIO]
   for (const Run &run : runs_) {
     const int b = run.block;
     double fmax = local[FMAX + b];
@@ -129,9 +135,11 @@ PetscErrorCode BlockConvergence::test(PetscInt it, Vec x, Vec dx, Vec F, PetscRe
       for (std::size_t i = run.begin; i < run.end; ++i) d2 += da[i] * da[i];
       local[D2 + b] = d2;
     }
-    if (b == FrictionStates)
-      for (std::size_t i = run.begin; i < run.end; ++i)
-        local[ZRATIO] = std::max(local[ZRATIO], std::abs(da[i]) / std::max(std::abs(xa[i]), zFloor_[i]));
+    if (b == FirstOrderStates)
+      for (std::size_t i = run.begin; i < run.end; ++i) {
+        const double ratio = std::abs(da[i]) / std::max(std::abs(xa[i]), zFloor_[i]);
+        if (ratio > local[ZRATIO]) local[ZRATIO] = ratio, largestState = stateOf_[i];
+      }
   }
   local[F2] = f2;
   if (da) PetscCall(VecRestoreArrayRead(dx, &da));
@@ -174,12 +182,13 @@ PetscErrorCode BlockConvergence::test(PetscInt it, Vec x, Vec dx, Vec F, PetscRe
   roundoff_ = roundoff;
   bool allResiduals = true;
   lastHolder_ = -1;
+  lastHolderState_.clear();
   incrementAtRoundoff_ = true;
   std::array<double, NumBlocks> increments{};
   for (int b = 0; b < NumBlocks; ++b) {
-    // The size of the block's increment, for the friction states relative
+    // The size of the block's increment, for the first-order states relative
     // to each entry's own size.
-    increments[b] = b == FrictionStates ? all[ZRATIO] : std::sqrt(all[D2 + b]);
+    increments[b] = b == FirstOrderStates ? all[ZRATIO] : std::sqrt(all[D2 + b]);
     if (!present_[b]) continue;
     const bool residual = all[FMAX + b] <= rtol * initialResidual_[b];
     // The error left after this increment, estimated from the contraction
@@ -190,15 +199,26 @@ PetscErrorCode BlockConvergence::test(PetscInt it, Vec x, Vec dx, Vec F, PetscRe
     const double left = theta < 1 ? theta / (1 - theta) * increments[b] : increments[b];
     const double step = std::sqrt(all[D2 + b]);
     incrementAtRoundoff_ = incrementAtRoundoff_ && step <= roundoff;
-    const bool increment = step <= roundoff || (b == FrictionStates ? left <= stol : left <= stol * std::sqrt(all[X2 + b]));
+    const bool increment = step <= roundoff || (b == FirstOrderStates ? left <= stol : left <= stol * std::sqrt(all[X2 + b]));
     allResiduals = allResiduals && residual;
     if (!residual && !increment && lastHolder_ < 0) {
       lastHolder_ = b;
+      if (b == FirstOrderStates) {
+        // Which state: the owner of the largest relative increment over the
+        // ranks (the same branch on every rank: all[] is reduced).
+        struct {
+          double ratio;
+          int state;
+        } mine{local[ZRATIO], largestState}, worst;
+        PetscCallMPI(MPI_Allreduce(&mine, &worst, 1, MPI_DOUBLE_INT, MPI_MAXLOC, comm_));
+        if (worst.state >= 0 && worst.state < (int)stateNames_.size()) lastHolderState_ = stateNames_[worst.state];
+      }
       PetscCall(PetscInfo(nullptr,
                           "iteration %d: %s not converged: residual %g (%g at the first iterate), increment %g (block size %g, "
-                          "largest relative increment of a friction state %g, estimated error left %g, round-off %g)\n",
+                          "largest relative increment of a first-order state %g%s%s%s, estimated error left %g, round-off %g)\n",
                           (int)it, blockName(b), all[FMAX + b], initialResidual_[b], step, std::sqrt(all[X2 + b]), all[ZRATIO],
-                          left, roundoff));
+                          lastHolderState_.empty() ? "" : " (", lastHolderState_.c_str(),
+                          lastHolderState_.empty() ? "" : ")", left, roundoff));
     }
   }
   previousIncrement_ = increments;

@@ -145,7 +145,7 @@ PetscErrorCode readNewtonOptions(MPI_Comm comm, const char *prefix, JacobianReus
                              "on several ranks; given explicitly, the tracking's eigen-analyses too)", "",
                              *schur, schur, nullptr));
   PetscCall(PetscOptionsBool("-boom_newton_block_test",
-                             "Judge Newton convergence per block of unknowns (body and slack coordinates, friction states, "
+                             "Judge Newton convergence per block of unknowns (body and slack coordinates, first-order states, "
                              "multipliers), each on its own scale, instead of on the whole vector",
                              "", blocks, &blocks, nullptr));
   if (blockTest) *blockTest = blocks;

@@ -2,6 +2,8 @@
 // docs/model.md §4.7) on hand-made iterates of a block on a rail with LuGre
 // friction: a friction-state increment that PETSc's test on the whole vector
 // accepts is refused, and every block is judged on its own size.
+#include "cylinder_block.hpp"
+
 #include "boomdyn/assembler.hpp"
 #include "boomdyn/block_convergence.hpp"
 #include "boomdyn/lugre_friction.hpp"
@@ -87,7 +89,8 @@ TEST(BlockConvergence, RefusesAnUnconvergedFrictionStateThatTheWholeVectorTestAc
   VecNorm(f.dx, NORM_2, &snorm);
   EXPECT_LT(snorm, 1e-10 * xnorm) << "the whole-vector test would have accepted this iterate";
   EXPECT_EQ(f.test(1), SNES_CONVERGED_ITERATING);
-  EXPECT_EQ(f.blocks.lastHolder(), BlockConvergence::FrictionStates);
+  EXPECT_EQ(f.blocks.lastHolder(), BlockConvergence::FirstOrderStates);
+  EXPECT_EQ(f.blocks.lastHolderState(), "LuGre z of sliding_joint 'rear'");
   // An increment of 1e-19 m (1e-11 of z) is converged.
   f.setEntry(f.dx, f.z, 1e-19);
   EXPECT_EQ(f.test(2), SNES_CONVERGED_SNORM_RELATIVE);
@@ -128,8 +131,40 @@ TEST(BlockConvergence, ResidualsReducedInEveryBlockConverge)
   // One row not reduced enough: not converged.
   f.setEntry(f.F, f.z, 1e-9);
   EXPECT_EQ(f.test(1), SNES_CONVERGED_ITERATING);
-  EXPECT_EQ(f.blocks.lastHolder(), BlockConvergence::FrictionStates);
+  EXPECT_EQ(f.blocks.lastHolder(), BlockConvergence::FirstOrderStates);
   // A NaN anywhere ends the solve.
   f.setEntry(f.F, f.slack, std::nan(""));
   EXPECT_EQ(f.test(2), SNES_DIVERGED_FNORM_NAN);
+}
+
+// A hydraulic cylinder's states are named as what they are (their owner
+// names them, Model::firstOrderNames()), not as friction states, and they
+// are not frictional joints in the output's layout.
+TEST(BlockConvergence, NamesACylinderPressureThatHolds)
+{
+  Model model(parseScene(boomdyn::testing::cylinder_block::scene("valve: closed, initial_pressure_piston: 1.0e+7", "{t_end: 1, dt: 1.0e-3}"),
+                         "cylinder-block.yaml"));
+  EXPECT_TRUE(model.frictionJointNames().empty());
+  ASSERT_EQ(model.firstOrderNames().size(), 3u);
+  EXPECT_EQ(model.firstOrderNames()[0], "piston pressure of hydraulic_cylinder 'lift'");
+  EXPECT_EQ(model.firstOrderNames()[2], "stroke memory of hydraulic_cylinder 'lift'");
+  Assembler assembler(model);
+  ASSERT_EQ(assembler.setUp(PETSC_COMM_WORLD), 0);
+  Vec x, dx, F;
+  for (Vec *v : {&x, &dx, &F}) ASSERT_EQ(assembler.createVector(v), 0);
+  ASSERT_EQ(assembler.initialState(x), 0);
+  BlockConvergence blocks;
+  ASSERT_EQ(blocks.setUp(model, x), 0);
+  SNESConvergedReason reason;
+  VecSet(F, 1.0);
+  ASSERT_EQ(blocks.test(0, x, dx, F, 1e-10, 1e-10, 1e-50, &reason), 0);
+  // 1 Pa on 100 bar (1e-7 of p1): a pressure that has not converged.
+  const PetscInt p1 = model.firstOrderCoordinates()[0];
+  VecSetValue(dx, p1, 1.0, INSERT_VALUES);
+  VecAssemblyBegin(dx), VecAssemblyEnd(dx);
+  ASSERT_EQ(blocks.test(1, x, dx, F, 1e-10, 1e-10, 1e-50, &reason), 0);
+  EXPECT_EQ(reason, SNES_CONVERGED_ITERATING);
+  EXPECT_EQ(blocks.lastHolder(), BlockConvergence::FirstOrderStates);
+  EXPECT_EQ(blocks.lastHolderState(), "piston pressure of hydraulic_cylinder 'lift'");
+  for (Vec *v : {&x, &dx, &F}) VecDestroy(v);
 }
