@@ -5,7 +5,7 @@
 // heavy symmetric top with its axis horizontal), energy conservation at
 // rho_inf = 1 with its second-order rate, a slewing drive on a hinge, and
 // planar scenes run as spatial models in their plane (-boom_spatial).
-#include "support.hpp"
+#include "spatial_trajectory.hpp"
 
 #include "boomdyn/euler_parameters.hpp"
 #include "boomdyn/spatial_embedding.hpp"
@@ -19,62 +19,7 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
-// Every step's time, coordinates and energy (gathered on every rank).
-struct Trajectory {
-  std::vector<double> t, energy;
-  std::vector<std::vector<double>> q;
-  bool completed = false;
-};
-
-class TrajectoryRecorder : public Monitor {
-public:
-  TrajectoryRecorder(const Model &model, Trajectory &out) : model_(model), out_(out) {}
-  PetscErrorCode start(const RunState &s, bool) override { return record(s); }
-  PetscErrorCode afterStep(const RunState &s, std::string *) override { return record(s); }
-
-private:
-  PetscErrorCode record(const RunState &s)
-  {
-    PetscFunctionBeginUser;
-    const std::vector<double> q = gatherAll(s.q);
-    out_.t.push_back(s.t);
-    out_.q.emplace_back(q.begin(), q.begin() + model_.numCoordinates());
-    out_.energy.push_back(s.energy.kinetic + s.energy.strain + s.energy.potential);
-    PetscFunctionReturn(0);
-  }
-  const Model &model_;
-  Trajectory &out_;
-};
-
-Trajectory run(const std::string &text)
-{
-  const Scene scene = parseScene(text, "spatial.yaml");
-  Trajectory out;
-  Simulation sim(scene, PETSC_COMM_WORLD, testOptions());
-  check(sim.setUp());
-  sim.addMonitor(std::make_unique<TrajectoryRecorder>(sim.model(), out));
-  check(sim.run());
-  out.completed = sim.summary().completed;
-  return out;
-}
-
-std::string number(double x)
-{
-  char text[64];
-  std::snprintf(text, sizeof text, "%.17g", x);
-  return text;
-}
-
-// Frequency (rad/s) of a signal from its zero crossings (linear
-// interpolation between steps): pi per half period.
-double crossingFrequency(const std::vector<double> &t, const std::vector<double> &x)
-{
-  std::vector<double> crossings;
-  for (std::size_t k = 1; k < x.size(); ++k)
-    if ((x[k - 1] < 0) != (x[k] < 0)) crossings.push_back(t[k - 1] - x[k - 1] * (t[k] - t[k - 1]) / (x[k] - x[k - 1]));
-  EXPECT_GE(crossings.size(), 4u);
-  return kPi * (crossings.size() - 1) / (crossings.back() - crossings.front());
-}
+Trajectory run(const std::string &text) { return runTrajectory(text, "spatial.yaml"); }
 
 // A rod of 1 m and 2 kg hanging from a spherical joint at its start, tilted
 // by theta0 in the x-z plane; `up` chooses which body axis is the swing axis.
