@@ -4,26 +4,16 @@
 // Free: translation along and rotation about the axis. Rows: two offsets
 // across the axis, the optional slide drive, two alignment rows
 // (spatial_axis_joint.hpp, spatial_joint.hpp).
-#include "boomdyn/physics_type.hpp"
 #include "spatial_axis_joint.hpp"
 
 namespace boomdyn {
 
-namespace {
-void buildCylindrical(const ComponentSpec &spec, ModelBuilder &b) { buildAxisSlider(spec, b, false); }
-} // namespace
-
 PhysicsType cylindricalJointType()
 {
-  PhysicsType t;
-  t.dimension = 3;
-  axisSliderSchema(t.schema, "cylindrical_joint",
-                   "A material point slides along an axis fixed in another body or the ground and the body turns "
-                   "about it: translation along and rotation about the axis stay free (4 rows; 5 with 'slide').");
-  t.complete = completeAxisSlider;
-  t.check = checkJointAxis;
-  t.build = buildCylindrical;
-  return t;
+  return axisSliderType("cylindrical_joint",
+                        "A material point slides along an axis fixed in another body or the ground and the body turns "
+                        "about it: translation along and rotation about the axis stay free (4 rows; 5 with 'slide').",
+                        false);
 }
 
 } // namespace boomdyn

@@ -62,6 +62,8 @@ SpatialOffsetRow axisOffsetRow(const AxisJointFrame &f, const Vec3 &direction, c
   return row;
 }
 
+namespace {
+
 void buildAxisSlider(const ComponentSpec &spec, ModelBuilder &b, bool roll)
 {
   const AxisJointFrame f = axisJointFrame(spec, b);
@@ -105,6 +107,22 @@ void axisSliderSchema(TypeSchema &schema, const std::string &type, const std::st
       forbid("angle", "not allowed for a " + type + " (prescribe the displacement along the axis with 'slide')"),
       forbidIfAbsent("other", "other_at", "only allowed together with 'other'"),
   };
+}
+
+void buildCylindrical(const ComponentSpec &spec, ModelBuilder &b) { buildAxisSlider(spec, b, false); }
+void buildPrismatic(const ComponentSpec &spec, ModelBuilder &b) { buildAxisSlider(spec, b, true); }
+
+} // namespace
+
+PhysicsType axisSliderType(const std::string &type, const std::string &summary, bool roll)
+{
+  PhysicsType t;
+  t.dimension = 3;
+  axisSliderSchema(t.schema, type, summary);
+  t.complete = completeAxisSlider;
+  t.check = checkJointAxis;
+  t.build = roll ? buildPrismatic : buildCylindrical;
+  return t;
 }
 
 std::optional<SpecIssue> checkJointAxis(const ComponentSpec &spec, const Scene &)

@@ -37,14 +37,11 @@ SpatialDotRow axisRollRow(const AxisJointFrame &f);
 SpatialOffsetRow axisOffsetRow(const AxisJointFrame &f, const Vec3 &direction,
                                const TimeFunction &shift = TimeFunction::constant(0.0));
 
-// A joint whose point slides along the axis (cylindrical_joint, and with
-// `roll` prismatic_joint): two offset rows across the axis, the optional
-// slide drive (key `slide`) along it, the two alignment rows and with
-// `roll` the roll row, in that order.
-void buildAxisSlider(const ComponentSpec &spec, ModelBuilder &builder, bool roll);
-// Their schema: name, summary, keys and rules.
-void axisSliderSchema(TypeSchema &schema, const std::string &type, const std::string &summary);
-void completeAxisSlider(ComponentSpec &spec, const Scene &scene);
+// The type of a joint whose point slides along the axis (cylindrical_joint,
+// and with `roll` prismatic_joint): two offset rows across the axis, the
+// optional slide drive (key `slide`) along it, the two alignment rows and
+// with `roll` the roll row, in that order.
+PhysicsType axisSliderType(const std::string &type, const std::string &summary, bool roll);
 
 // The check of `axis` shared by the types: not the zero vector.
 std::optional<SpecIssue> checkJointAxis(const ComponentSpec &spec, const Scene &scene);

@@ -51,6 +51,18 @@ inline Trajectory runTrajectory(const std::string &text, const std::string &file
   return out;
 }
 
+// A planar scene and its spatial embedding run with the same options, both
+// with full Newton (spatial runs use it by default): the modified iteration
+// stops anywhere within the Newton tolerance.
+inline void runPlanarAndSpatial(const Scene &planar, const Scene &spatial, const SimulationOptions &options,
+                                DynamicHistory &a, DynamicHistory &b)
+{
+  check(PetscOptionsSetValue(nullptr, "-boom_jacobian_reuse", "0"));
+  a = runDynamicWith(planar, PETSC_COMM_WORLD, options);
+  b = runDynamicWith(spatial, PETSC_COMM_WORLD, options);
+  check(PetscOptionsClearValue(nullptr, "-boom_jacobian_reuse"));
+}
+
 // x with 17 significant digits, for scene text.
 inline std::string number(double x)
 {

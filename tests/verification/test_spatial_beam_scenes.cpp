@@ -167,10 +167,8 @@ dynamic: {t_end: 0.05, dt: 1.0e-3, rho_inf: 0.8}
   const Scene planar = parseScene(text, "planar.yaml");
   const Scene spatial = spatialEmbedding(planar);
   SimulationOptions options = testOptions();
-  check(PetscOptionsSetValue(nullptr, "-boom_jacobian_reuse", "0"));
-  const DynamicHistory a = runDynamicWith(planar, PETSC_COMM_WORLD, options);
-  const DynamicHistory b = runDynamicWith(spatial, PETSC_COMM_WORLD, options);
-  check(PetscOptionsClearValue(nullptr, "-boom_jacobian_reuse"));
+  DynamicHistory a, b;
+  runPlanarAndSpatial(planar, spatial, options, a, b);
   ASSERT_TRUE(a.summary.completed) << a.summary.failure;
   ASSERT_TRUE(b.summary.completed) << b.summary.failure;
   ASSERT_EQ(a.time.size(), b.time.size());

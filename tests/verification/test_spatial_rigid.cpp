@@ -262,12 +262,8 @@ TEST(SpatialRigid, PlanarSceneRunAsSpatialModelInItsPlane)
   const Scene spatial = spatialEmbedding(planar);
   SimulationOptions options = testOptions();
   options.consistentMultipliers = true; // the multipliers of each step's state, not the step's own (O(h))
-  // Both with full Newton (spatial runs use it by default): the modified
-  // iteration stops anywhere within the Newton tolerance.
-  check(PetscOptionsSetValue(nullptr, "-boom_jacobian_reuse", "0"));
-  const DynamicHistory a = runDynamicWith(planar, PETSC_COMM_WORLD, options);
-  const DynamicHistory b = runDynamicWith(spatial, PETSC_COMM_WORLD, options);
-  check(PetscOptionsClearValue(nullptr, "-boom_jacobian_reuse"));
+  DynamicHistory a, b;
+  runPlanarAndSpatial(planar, spatial, options, a, b);
   ASSERT_TRUE(a.summary.completed) << a.summary.failure;
   ASSERT_TRUE(b.summary.completed) << b.summary.failure;
   ASSERT_EQ(a.time.size(), b.time.size());
