@@ -144,6 +144,8 @@ private:
   double t_ = 0, massScale_ = 1, errorTolerance_ = 0;
   bool hasDrives_ = false; // some constraint depends on time (its power needs the multipliers)
   bool kinkRestart_ = true;
+  // Spatial models at rho_inf = 1: consistent accelerations after every step (step()).
+  bool accelerationRestart_ = false;
   bool accelerationPredictor_ = true;
   bool filteredStart_ = true;
   bool consistentMultipliers_ = false;

@@ -6,6 +6,7 @@
 #include "boomdyn/model_builder.hpp"
 #include "boomdyn/physics_type.hpp"
 #include "boomdyn/spatial_joint.hpp"
+#include "spatial_axis_joint.hpp"
 
 namespace boomdyn {
 
@@ -17,39 +18,10 @@ void completeRevolute(ComponentSpec &spec, const Scene &scene)
   if (!spec.has("axis")) spec.set("axis", Vec3d{0, 0, 1});
 }
 
-std::optional<SpecIssue> checkRevolute(const ComponentSpec &spec, const Scene &)
-{
-  const Vec3d a = spec.vec3("axis");
-  if (!(a[0] * a[0] + a[1] * a[1] + a[2] * a[2] > 0)) return SpecIssue{"axis", "must not be the zero vector"};
-  return std::nullopt;
-}
-
 void buildRevolute(const ComponentSpec &spec, ModelBuilder &b)
 {
-  const SpatialBody &body = b.spatialBody(spec.text("body"));
-  const double s = spec.number("at");
-  const SpatialEnd a = SpatialEnd::onBody(body, s);
-  const Vec3d ax = spec.vec3("axis");
-  const Vec3 axis = Vec3(ax[0], ax[1], ax[2]).normalized();
-  Vec3 n1, n2;
-  frameAcross(axis, body.initialTriad(s).col(0), n1, n2);
-  SpatialEnd other;
-  Mat3 Tb = Mat3::Identity(); // the axes the directions across are fixed in, at t = 0
-  if (spec.has("other")) {
-    const SpatialBody &ob = b.spatialBody(spec.text("other"));
-    other = SpatialEnd::onBody(ob, spec.number("other_at"));
-    Tb = ob.initialTriad(other.s);
-  } else {
-    const Vec3d p = spec.vec3("point");
-    other = SpatialEnd::ground(Vec3(p[0], p[1], p[2]));
-  }
-  const Vec3 u = body.initialTriad(s).transpose() * axis;
-  std::vector<SpatialDotRow> rows(2);
-  rows[0].u = rows[1].u = u;
-  rows[0].n1 = rows[1].n1 = Vec3::Zero();
-  rows[0].n2 = Tb.transpose() * n1;
-  rows[1].n2 = Tb.transpose() * n2;
-  b.addConstraint(std::make_shared<SpatialJoint>(spec.name, a, other, true, rows), spec.mark);
+  const AxisJointFrame f = axisJointFrame(spec, b);
+  b.addConstraint(std::make_shared<SpatialJoint>(spec.name, f.a, f.other, true, axisAlignmentRows(f)), spec.mark);
 }
 
 } // namespace
@@ -78,7 +50,7 @@ PhysicsType revoluteJointType()
       forbidIfAbsent("other", "other_at", "only allowed together with 'other'"),
   };
   t.complete = completeRevolute;
-  t.check = checkRevolute;
+  t.check = checkJointAxis;
   t.build = buildRevolute;
   return t;
 }

@@ -43,10 +43,10 @@ void frameAcross(const Vec3 &axis, const Vec3 &hint, Vec3 &n1, Vec3 &n2)
   n2 = a.cross(n1);
 }
 
-SpatialJoint::SpatialJoint(std::string name, SpatialEnd a, SpatialEnd b, bool position, std::vector<SpatialDotRow> rows,
-                           bool driven)
-  : name_(std::move(name)), a_(std::move(a)), b_(std::move(b)), position_(position), rows_(std::move(rows)),
-    driven_(driven)
+SpatialJoint::SpatialJoint(std::string name, SpatialEnd a, SpatialEnd b, bool position,
+                           std::vector<SpatialOffsetRow> offsets, std::vector<SpatialDotRow> rows, bool driven)
+  : name_(std::move(name)), a_(std::move(a)), b_(std::move(b)), position_(position), offsets_(std::move(offsets)),
+    rows_(std::move(rows)), driven_(driven)
 {
 }
 
@@ -58,18 +58,21 @@ void SpatialJoint::coordinates(std::vector<PetscInt> &dofs) const
 
 void SpatialJoint::velocityBreakpoints(std::vector<double> &out) const
 {
+  for (const SpatialOffsetRow &r : offsets_) r.shift.velocityBreakpoints(out);
   for (const SpatialDotRow &r : rows_) r.theta.velocityBreakpoints(out);
 }
 
 void SpatialJoint::accelerationBreakpoints(std::vector<double> &out) const
 {
+  for (const SpatialOffsetRow &r : offsets_) r.shift.accelerationBreakpoints(out);
   for (const SpatialDotRow &r : rows_) r.theta.accelerationBreakpoints(out);
 }
 
 const char *SpatialJoint::rowUnit(int row) const
 {
-  if (position_ && row < 3) return "m";
-  return rows_[row - (position_ ? 3 : 0)].unit;
+  row -= position_ ? 3 : 0;
+  if (row < 0 || row < static_cast<int>(offsets_.size())) return "m";
+  return rows_[row - offsets_.size()].unit;
 }
 
 void SpatialJoint::evaluate(double t, const double *q, const double *v, const double *w, ConstraintEval &out) const
@@ -109,6 +112,53 @@ void SpatialJoint::evaluate(double t, const double *q, const double *v, const do
       }
     }
     row = 3;
+  }
+  if (!offsets_.empty()) {
+    // C = d . T_b c - base - f(t) with the separation d = r_a - r_b.
+    const Vec3 d = pa.r - (b_.body ? pb.r : b_.point);
+    Vec3 dd = Vec3::Zero(); // its rate, without the acceleration part
+    if (v) dd = pa.r_q.leftCols(na) * va - (b_.body ? Vec3(pb.r_q.leftCols(nb) * vb) : Vec3::Zero());
+    Vec3 e;
+    Eigen::MatrixXd eq;
+    for (const SpatialOffsetRow &o : offsets_) {
+      if (b_.body) fixedVector(pb, o.c, nb, e, eq);
+      else e = o.c;
+      out.C[row] = d.dot(e) - o.base - o.shift.value(t);
+      out.Cq.block(row, 0, 1, na) = e.transpose() * pa.r_q.leftCols(na);
+      if (b_.body) out.Cq.block(row, na, 1, nb) = d.transpose() * eq - e.transpose() * pb.r_q.leftCols(nb);
+      if (v) {
+        // d2C/dt2 = C_q a + gamma: d'' . e + 2 d' . e' + d . e'' - f''.
+        a_.body->curvatureTerm(a_.loc, a_.s, q, SpatialField::Position, e, h);
+        double g = va.dot(h.topLeftCorner(na, na) * va);
+        if (b_.body) {
+          b_.body->curvatureTerm(b_.loc, b_.s, qb, SpatialField::Position, -e, h);
+          Eigen::MatrixXd Hb = h.topLeftCorner(nb, nb);
+          addVectorHessian(b_, qb, o.c, d, 1.0, Hb);
+          g += vb.dot(Hb * vb) + 2.0 * dd.dot(eq * vb);
+        }
+        if (driven_) {
+          out.Ct[row] = -o.shift.rate(t);
+          g -= o.shift.accel(t);
+        }
+        out.gamma[row] = g;
+      }
+      if (w && w[row] != 0.0) {
+        const double wr = w[row];
+        a_.body->curvatureTerm(a_.loc, a_.s, q, SpatialField::Position, wr * e, h);
+        out.H.topLeftCorner(na, na) += h.topLeftCorner(na, na);
+        if (b_.body) {
+          b_.body->curvatureTerm(b_.loc, b_.s, qb, SpatialField::Position, -wr * e, h);
+          out.H.bottomRightCorner(nb, nb) += h.topLeftCorner(nb, nb);
+          addVectorHessian(b_, qb, o.c, d, wr, out.H.bottomRightCorner(nb, nb));
+          const Eigen::MatrixXd rbe = pb.r_q.leftCols(nb).transpose() * eq;
+          out.H.bottomRightCorner(nb, nb) -= wr * (rbe + rbe.transpose());
+          const Eigen::MatrixXd cross = wr * pa.r_q.leftCols(na).transpose() * eq;
+          out.H.topRightCorner(na, nb) += cross;
+          out.H.bottomLeftCorner(nb, na) += cross.transpose();
+        }
+      }
+      ++row;
+    }
   }
   Vec3 u, vv;
   Eigen::MatrixXd uq, vq;

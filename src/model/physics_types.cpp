@@ -28,6 +28,8 @@
   X(spatialRigidBodyType) \
   X(sphericalJointType) \
   X(revoluteJointType) \
+  X(cylindricalJointType) \
+  X(prismaticJointType) \
   X(spatialClampType) \
   X(spatialAngleDriveType) \
   X(spatialSlidingJointType) \

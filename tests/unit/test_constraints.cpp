@@ -7,6 +7,7 @@
 #include "boomdyn/pin.hpp"
 #include "boomdyn/rigid_body.hpp"
 #include "boomdyn/rope.hpp"
+#include "constraint_derivative_check.hpp"
 #include "rope_test_bodies.hpp"
 #include "boomdyn/sliding_joint.hpp"
 
@@ -20,70 +21,17 @@ namespace {
 
 const ancf::Section kSection{1e8, 1e5, 30};
 
-// Random deformed values for the constraint's coordinates (global vector q).
+// Random deformed states: q0 plus up to 5 cm (or rad) on every coordinate.
+constexpr double kSpread = 0.05;
+
 std::vector<double> randomState(const std::vector<PetscInt> &dofs, std::mt19937 &rng, const std::vector<double> &q0)
 {
-  std::uniform_real_distribution<double> u(-0.05, 0.05);
-  std::vector<double> v(dofs.size());
-  for (std::size_t i = 0; i < dofs.size(); ++i) v[i] = q0[dofs[i]] + u(rng);
-  return v;
+  return boomdyn::testing::randomNear(dofs, q0, rng, kSpread);
 }
 
-// Check C_q, H and gamma of a constraint by central differences.
 void checkConstraint(const Constraint &c, const std::vector<double> &q0, unsigned seed)
 {
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<double> u(-1.0, 1.0);
-  std::vector<PetscInt> dofs;
-  c.coordinates(dofs);
-  const int n = static_cast<int>(dofs.size()), m = c.numRows();
-  for (int trial = 0; trial < 4; ++trial) {
-    const double t = 0.37 + trial;
-    std::vector<double> q = randomState(dofs, rng, q0), v(n), a(n), w(m);
-    for (auto *vec : {&v, &a}) for (double &x : *vec) x = u(rng);
-    for (double &x : w) x = u(rng);
-    ConstraintEval ev;
-    c.evaluate(t, q.data(), v.data(), w.data(), ev);
-    ASSERT_EQ(ev.C.size(), m);
-    ASSERT_EQ(ev.Cq.rows(), m);
-    ASSERT_EQ(ev.Cq.cols(), n);
-    // C_q
-    const double h = 1e-6;
-    Eigen::MatrixXd fd(m, n);
-    for (int j = 0; j < n; ++j) {
-      auto qp = q, qm = q;
-      qp[j] += h, qm[j] -= h;
-      ConstraintEval ep, em;
-      c.evaluate(t, qp.data(), nullptr, nullptr, ep);
-      c.evaluate(t, qm.data(), nullptr, nullptr, em);
-      fd.col(j) = (ep.C - em.C) / (2 * h);
-    }
-    EXPECT_LT((ev.Cq - fd).norm(), 1e-7 * (1.0 + fd.norm())) << c.name();
-    // H = d(C_q^T w)/dq
-    Eigen::MatrixXd fdH(n, n);
-    const Eigen::Map<const Eigen::VectorXd> wv(w.data(), m);
-    for (int j = 0; j < n; ++j) {
-      auto qp = q, qm = q;
-      qp[j] += h, qm[j] -= h;
-      ConstraintEval ep, em;
-      c.evaluate(t, qp.data(), nullptr, nullptr, ep);
-      c.evaluate(t, qm.data(), nullptr, nullptr, em);
-      fdH.col(j) = (ep.Cq.transpose() * wv - em.Cq.transpose() * wv) / (2 * h);
-    }
-    EXPECT_LT((ev.H - fdH).norm(), 1e-6 * (1.0 + fdH.norm())) << c.name();
-    // gamma: d2/dtau2 C(q + tau v + tau^2/2 a, t + tau) = C_q a + gamma
-    const double ht = 1e-4;
-    auto path = [&](double tau) {
-      std::vector<double> qt(n);
-      for (int j = 0; j < n; ++j) qt[j] = q[j] + tau * v[j] + 0.5 * tau * tau * a[j];
-      ConstraintEval e;
-      c.evaluate(t + tau, qt.data(), nullptr, nullptr, e);
-      return Eigen::VectorXd(e.C);
-    };
-    const Eigen::VectorXd d2 = (path(ht) - 2.0 * path(0.0) + path(-ht)) / (ht * ht);
-    const Eigen::VectorXd predicted = ev.Cq * Eigen::Map<const Eigen::VectorXd>(a.data(), n) + ev.gamma;
-    EXPECT_LT((predicted - d2).norm(), 1e-5 * (1.0 + d2.norm())) << c.name() << " gamma";
-  }
+  boomdyn::testing::checkConstraintDerivatives(c, q0, seed, kSpread);
 }
 
 } // namespace

@@ -6,9 +6,11 @@
 // body-body), point loads (fixed, follower, moments) and point masses with
 // rotary inertia.
 #include "boomdyn/euler_parameters.hpp"
+#include "boomdyn/spatial_ancf_beam.hpp"
 #include "boomdyn/spatial_joint.hpp"
 #include "boomdyn/spatial_point_load.hpp"
 #include "boomdyn/spatial_rigid_body.hpp"
+#include "constraint_derivative_check.hpp"
 
 #include <gtest/gtest.h>
 
@@ -52,63 +54,16 @@ struct TwoBodies {
 
 // A random state near q0 whose Euler parameters are off the unit sphere by a
 // few percent (the Jacobians must hold off it as well).
+constexpr double kSpread = 0.3;
+
 std::vector<double> randomState(const std::vector<PetscInt> &dofs, const std::vector<double> &q0, std::mt19937 &rng)
 {
-  std::uniform_real_distribution<double> u(-0.3, 0.3);
-  std::vector<double> q(dofs.size());
-  for (std::size_t i = 0; i < dofs.size(); ++i) q[i] = q0[dofs[i]] + u(rng);
-  return q;
+  return boomdyn::testing::randomNear(dofs, q0, rng, kSpread);
 }
 
 void checkConstraint(const Constraint &c, const std::vector<double> &q0, unsigned seed)
 {
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<double> u(-1.0, 1.0);
-  std::vector<PetscInt> dofs;
-  c.coordinates(dofs);
-  const int n = static_cast<int>(dofs.size()), m = c.numRows();
-  for (int trial = 0; trial < 4; ++trial) {
-    const double t = 0.37 + trial;
-    std::vector<double> q = randomState(dofs, q0, rng), v(n), a(n), w(m);
-    for (auto *vec : {&v, &a, &w})
-      for (double &x : *vec) x = u(rng);
-    ConstraintEval ev;
-    c.evaluate(t, q.data(), v.data(), w.data(), ev);
-    ASSERT_EQ(ev.C.size(), m);
-    ASSERT_EQ(ev.Cq.cols(), n);
-    const double h = 1e-6;
-    Eigen::MatrixXd fd(m, n), fdH(n, n);
-    const Eigen::Map<const Eigen::VectorXd> wv(w.data(), m);
-    for (int j = 0; j < n; ++j) {
-      auto qp = q, qm = q;
-      qp[j] += h, qm[j] -= h;
-      ConstraintEval ep, em;
-      c.evaluate(t, qp.data(), nullptr, nullptr, ep);
-      c.evaluate(t, qm.data(), nullptr, nullptr, em);
-      fd.col(j) = (ep.C - em.C) / (2 * h);
-      fdH.col(j) = (ep.Cq.transpose() * wv - em.Cq.transpose() * wv) / (2 * h);
-    }
-    EXPECT_LT((ev.Cq - fd).norm(), 1e-7 * (1.0 + fd.norm())) << c.name() << " C_q";
-    EXPECT_LT((ev.H - fdH).norm(), 1e-6 * (1.0 + fdH.norm())) << c.name() << " H";
-    const double ht = 1e-4;
-    auto path = [&](double tau) {
-      std::vector<double> qt(n);
-      for (int j = 0; j < n; ++j) qt[j] = q[j] + tau * v[j] + 0.5 * tau * tau * a[j];
-      ConstraintEval e;
-      c.evaluate(t + tau, qt.data(), nullptr, nullptr, e);
-      return Eigen::VectorXd(e.C);
-    };
-    const Eigen::VectorXd d2 = (path(ht) - 2.0 * path(0.0) + path(-ht)) / (ht * ht);
-    const Eigen::VectorXd predicted = ev.Cq * Eigen::Map<const Eigen::VectorXd>(a.data(), n) + ev.gamma;
-    EXPECT_LT((predicted - d2).norm(), 1e-5 * (1.0 + d2.norm())) << c.name() << " gamma";
-    // dC/dt at fixed q.
-    if (c.dependsOnTime()) {
-      ConstraintEval ep, em;
-      c.evaluate(t + h, q.data(), nullptr, nullptr, ep);
-      c.evaluate(t - h, q.data(), nullptr, nullptr, em);
-      EXPECT_LT((ev.Ct - (ep.C - em.C) / (2 * h)).norm(), 1e-7) << c.name() << " C_t";
-    }
-  }
+  boomdyn::testing::checkConstraintDerivatives(c, q0, seed, kSpread);
 }
 
 // The Newton blocks of a work item: d(residual)/dq, /dv, /da by central
@@ -252,6 +207,51 @@ TEST(SpatialJoints, RowsMatchFiniteDifferences)
   checkConstraint(SpatialJoint("drive_bodies", a, b, false, {drive}, true), bodies.q0, 36);
   checkConstraint(SpatialJoint("drive_profile", a, b, false, {profile}, true), bodies.q0, 37);
   checkConstraint(EulerNormalization("euler", 3), bodies.q0, 38);
+}
+
+// The offset rows of the cylindrical and prismatic joints and the slide
+// drive, (r_a - r_b) . T_b c - base - f(t), together with the alignment and
+// roll rows they come with: body-ground, body-body (large random rotations:
+// the Euler parameters move by up to 0.3 each) and a rigid body on a beam
+// section (twisted, bent element).
+TEST(SpatialJoints, OffsetRowsMatchFiniteDifferences)
+{
+  TwoBodies bodies;
+  const SpatialEnd a = SpatialEnd::onBody(bodies.a, 0.4), b = SpatialEnd::onBody(bodies.b, 1.1);
+  const SpatialEnd ground = SpatialEnd::ground(Vec3(0.2, -0.1, 0.4));
+  SpatialDotRow r1{Vec3(0.2, 0.9, -0.3), Vec3::Zero(), Vec3(0.5, 0.1, 0.8), TimeFunction::constant(0.0)};
+  SpatialDotRow r2{Vec3(-0.6, 0.2, 0.7), Vec3::Zero(), Vec3(0.1, -0.9, 0.2), TimeFunction::constant(0.0)};
+  SpatialDotRow roll{Vec3(0.7, -0.1, 0.3), Vec3::Zero(), Vec3(-0.2, 0.4, 0.9), TimeFunction::constant(0.0)};
+  SpatialOffsetRow o1{Vec3(0.3, -0.8, 0.5), 0.2, TimeFunction::constant(0.0)};
+  SpatialOffsetRow o2{Vec3(-0.9, 0.1, 0.4), -0.1, TimeFunction::constant(0.0)};
+  SpatialOffsetRow slide{Vec3(0.4, 0.6, -0.7), 0.3, TimeFunction::sine(0.4, 0.7, 0.2, 0.1)};
+  SpatialOffsetRow profile = slide;
+  profile.shift = TimeFunction::accelLimited(0.2, 0.0, 1.2, 0.8, 0.5, 2.0);
+  checkConstraint(SpatialJoint("cylindrical_ground", a, ground, false, {o1, o2}, {r1, r2}), bodies.q0, 61);
+  checkConstraint(SpatialJoint("cylindrical_bodies", a, b, false, {o1, o2}, {r1, r2}), bodies.q0, 62);
+  checkConstraint(SpatialJoint("prismatic_ground", a, ground, false, {o1, o2}, {r1, r2, roll}), bodies.q0, 63);
+  checkConstraint(SpatialJoint("prismatic_bodies", a, b, false, {o1, o2}, {r1, r2, roll}), bodies.q0, 64);
+  checkConstraint(SpatialJoint("slide_ground", a, ground, false, {o1, o2, slide}, {r1, r2, roll}, true), bodies.q0,
+                  65);
+  checkConstraint(SpatialJoint("slide_bodies", a, b, false, {o1, o2, slide}, {r1, r2}, true), bodies.q0, 66);
+  checkConstraint(SpatialJoint("slide_profile", a, b, false, {profile}, {}, true), bodies.q0, 67);
+  // A rigid body on a beam section and a beam section on a rigid body: the
+  // beam's director Hessians enter the offset rows of b.
+  spatial_beam::Section section;
+  section.EA = 1e6, section.EIy = 2e3, section.EIz = 3e3, section.GJ = 1e3, section.rhoA = 10, section.rhoIp = 0.1;
+  const SpatialAncfBeam beam("beam", 2.0, 2, section, Vec3(0.1, -0.2, 0.3), axesOf(Vec3(1, 0.4, -0.3), Vec3(0, 1, 1)),
+                             14);
+  std::vector<double> q0 = bodies.q0;
+  q0.resize(14 + beam.numCoordinates());
+  beam.initialCoordinates(q0.data() + 14);
+  const SpatialEnd onBeam = SpatialEnd::onBody(beam, 1.3);
+  checkConstraint(SpatialJoint("rigid_on_beam", a, onBeam, false, {o1, o2, slide}, {r1, r2, roll}, true), q0, 68);
+  checkConstraint(SpatialJoint("beam_on_rigid", onBeam, b, false, {o1, o2, slide}, {r1, r2, roll}, true), q0, 69);
+  // Row units: position, offsets, dot rows.
+  const SpatialJoint joint("units", a, b, false, {o1, o2}, {r1, r2, roll});
+  EXPECT_EQ(joint.numRows(), 5);
+  EXPECT_STREQ(joint.rowUnit(1), "m");
+  EXPECT_STREQ(joint.rowUnit(2), "rad");
 }
 
 TEST(SpatialPointLoads, ForcesAndMomentsMatchFiniteDifferences)

@@ -5,7 +5,7 @@
 // first bending frequency in both planes and the first torsional frequency
 // from free vibration, energy conservation at rho_inf = 1, and a planar
 // beam scene run as a spatial model in its plane (-boom_spatial).
-#include "support.hpp"
+#include "spatial_trajectory.hpp"
 
 #include "boomdyn/spatial_embedding.hpp"
 
@@ -19,60 +19,7 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
-struct Trajectory {
-  std::vector<double> t, energy;
-  std::vector<std::vector<double>> q;
-  bool completed = false;
-};
-
-class TrajectoryRecorder : public Monitor {
-public:
-  TrajectoryRecorder(const Model &model, Trajectory &out) : model_(model), out_(out) {}
-  PetscErrorCode start(const RunState &s, bool) override { return record(s); }
-  PetscErrorCode afterStep(const RunState &s, std::string *) override { return record(s); }
-
-private:
-  PetscErrorCode record(const RunState &s)
-  {
-    PetscFunctionBeginUser;
-    const std::vector<double> q = gatherAll(s.q);
-    out_.t.push_back(s.t);
-    out_.q.emplace_back(q.begin(), q.begin() + model_.numCoordinates());
-    out_.energy.push_back(s.energy.kinetic + s.energy.strain + s.energy.potential);
-    PetscFunctionReturn(0);
-  }
-  const Model &model_;
-  Trajectory &out_;
-};
-
-Trajectory run(const std::string &text)
-{
-  const Scene scene = parseScene(text, "spatial-beam.yaml");
-  Trajectory out;
-  Simulation sim(scene, PETSC_COMM_WORLD, testOptions());
-  check(sim.setUp());
-  sim.addMonitor(std::make_unique<TrajectoryRecorder>(sim.model(), out));
-  check(sim.run());
-  out.completed = sim.summary().completed;
-  return out;
-}
-
-std::string number(double x)
-{
-  char text[64];
-  std::snprintf(text, sizeof text, "%.17g", x);
-  return text;
-}
-
-// Frequency (rad/s) from the zero crossings of x (linear interpolation).
-double crossingFrequency(const std::vector<double> &t, const std::vector<double> &x)
-{
-  std::vector<double> crossings;
-  for (std::size_t k = 1; k < x.size(); ++k)
-    if ((x[k - 1] < 0) != (x[k] < 0)) crossings.push_back(t[k - 1] - x[k - 1] * (t[k] - t[k - 1]) / (x[k] - x[k - 1]));
-  EXPECT_GE(crossings.size(), 4u);
-  return kPi * (crossings.size() - 1) / (crossings.back() - crossings.front());
-}
+Trajectory run(const std::string &text) { return runTrajectory(text, "spatial-beam.yaml"); }
 
 // A cantilever of length 1 m along x with unit section constants, clamped
 // at its start, with the given section, loads and run.
@@ -220,10 +167,8 @@ dynamic: {t_end: 0.05, dt: 1.0e-3, rho_inf: 0.8}
   const Scene planar = parseScene(text, "planar.yaml");
   const Scene spatial = spatialEmbedding(planar);
   SimulationOptions options = testOptions();
-  check(PetscOptionsSetValue(nullptr, "-boom_jacobian_reuse", "0"));
-  const DynamicHistory a = runDynamicWith(planar, PETSC_COMM_WORLD, options);
-  const DynamicHistory b = runDynamicWith(spatial, PETSC_COMM_WORLD, options);
-  check(PetscOptionsClearValue(nullptr, "-boom_jacobian_reuse"));
+  DynamicHistory a, b;
+  runPlanarAndSpatial(planar, spatial, options, a, b);
   ASSERT_TRUE(a.summary.completed) << a.summary.failure;
   ASSERT_TRUE(b.summary.completed) << b.summary.failure;
   ASSERT_EQ(a.time.size(), b.time.size());
