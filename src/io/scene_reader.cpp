@@ -167,13 +167,12 @@ void SceneParser::parse(const Field &root, Scene &scene)
     scene.modal = parseModal(*m, false);
 
   if (scene.dimension == 3) {
-    // Statics and the eigen-analysis of a spatial model (Euler parameters
-    // with their normalization rows) are not verified yet: refused, not guessed.
+    // The eigen-analysis of a spatial model (Euler parameters with their
+    // normalization rows) is not verified yet: refused, not guessed.
+    // Statics (analysis: static, initial: static) is available.
     const char *why = "is not available for spatial scenes (dimension: 3) yet; run a dynamic analysis";
-    if (scene.analysis != Scene::Analysis::Dynamic)
-      report_.fail(top.require("analysis"), (scene.analysis == Scene::Analysis::Modal ? "modal" : "static") +
-                                                std::string(" ") + why);
-    if (scene.dynamic.startStatic) report_.fail(top.require("dynamic"), std::string("'initial: static' ") + why);
+    if (scene.analysis == Scene::Analysis::Modal)
+      report_.fail(top.require("analysis"), std::string("modal ") + why);
     if (scene.modal.count > 0) report_.fail(top.require("modal"), std::string("a modal analysis ") + why);
     if (const auto tr = top.get("tracking")) report_.fail(*tr, std::string("frequency tracking ") + why);
   }
