@@ -615,3 +615,50 @@ TEST(SpatialStatics, RebasingRunsMatchSingleRank)
     EXPECT_LT(d, 1e-10);
   }
 }
+
+// The example scene inputs/spatial_roll_up.yaml (3 m box boom, 16
+// elements, end moment 2 pi EI_z/L in 16 load steps): after each load step
+// the tip lies on the arc of radius EI_z/(f M); at f = 0.5 (half circle) and
+// f = 1 (full circle, tip back at the clamp) within 1e-4 L.
+class LoadStepTips : public Monitor {
+public:
+  explicit LoadStepTips(int tip) : tip_(tip) {}
+  PetscErrorCode afterStep(const RunState &s, std::string *) override
+  {
+    PetscFunctionBeginUser;
+    const std::vector<double> q = gatherAll(s.q);
+    factors.push_back(s.t);
+    tips.push_back(node(q, tip_));
+    PetscFunctionReturn(0);
+  }
+  std::vector<double> factors;
+  std::vector<Eigen::Vector3d> tips;
+
+private:
+  int tip_;
+};
+
+TEST(SpatialStatics, RollUpExampleSceneFollowsTheArcs)
+{
+  const Scene scene = readSceneFile(std::string(BOOMDYN_SOURCE_DIR) + "/inputs/spatial_roll_up.yaml");
+  Simulation sim(scene, PETSC_COMM_WORLD, testOptions());
+  check(sim.setUp());
+  auto owned = std::make_unique<LoadStepTips>(16);
+  LoadStepTips &tips = *owned;
+  sim.addMonitor(std::move(owned));
+  check(sim.run());
+  ASSERT_TRUE(sim.outcome().completed()) << sim.outcome().status;
+  ASSERT_EQ(tips.factors.size(), 16u);
+  const double L = 3.0;
+  double worst = 0;
+  for (std::size_t k = 0; k < tips.factors.size(); ++k) {
+    const double phi = 2 * kPi * tips.factors[k];
+    const Eigen::Vector3d exact(L * std::sin(phi) / phi, L * (1 - std::cos(phi)) / phi, 0);
+    const double err = (tips.tips[k] - exact).norm() / L;
+    worst = std::max(worst, err);
+    if (k == 7 || k == 15)
+      std::printf("example roll-up at f = %.4f: tip (%.6f, %.6f, %.2e) m, exact (%.6f, %.6f, 0), error %.2e L\n",
+                  tips.factors[k], tips.tips[k][0], tips.tips[k][1], tips.tips[k][2], exact[0], exact[1], err);
+  }
+  EXPECT_LT(worst, 1e-4);
+}
