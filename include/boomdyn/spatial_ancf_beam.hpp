@@ -53,7 +53,7 @@ public:
   // zero-twist triad (rebasedNodeFrame): the same twists give the same
   // section triads, strains and energy. Returns whether it rebased.
   // always: rebase whatever the angles (tests).
-  static constexpr double kRebaseAngle = 45.0; // degrees
+  static constexpr double kRebaseAngle = 120.0; // degrees
   bool rebase(const double *slopes, bool always = false);
   // The node references as 6 numbers per node (tangent, normal), and back.
   std::vector<double> references() const;

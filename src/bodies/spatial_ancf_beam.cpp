@@ -120,8 +120,8 @@ namespace {
 // The smallest rotation from a node's reference tangent to its current
 // tangent is singular at half a turn and the triad is undefined at a zero
 // slope: beyond about 170 degrees (cos < kTurnLimit) from the reference,
-// which rebasing (SpatialAncfBeam::rebase) keeps within 45 degrees of the
-// tangent at converged states, or at a slope shorter than a millionth of the
+// which rebasing (SpatialAncfBeam::rebase) keeps within 120 degrees of the
+// tangent at accepted states, or at a slope shorter than a millionth of the
 // reference one, the element is outside the chart of its references and its
 // residual is NaN (Newton reports a domain error and the step is cut).
 constexpr double kTurnLimit = -0.985;

@@ -345,7 +345,7 @@ TEST(SpatialStatics, DynamicStartFromStaticEquilibriumIsAtRest)
 // arc holds for the extensible beam too); tip at L sin(phi)/phi along the
 // beam and L (1 - cos phi)/phi across it, phi = M L/EI. At phi = pi the tip
 // has turned by half a turn, at 2 pi by a whole one: beyond the chart of
-// the initial references, so the beam rebases (every 45 degrees of turn).
+// the initial references, so the beam rebases (every 120 degrees of turn).
 // Tip error within 1e-4 L at 16 elements, convergence rate > 3.5 up to 16
 // elements (below 32 the error meets the Newton tolerance). About a
 // principal axis of a section with EI_y = 2 EI_z, and about the axis at 45
@@ -503,9 +503,9 @@ TEST(SpatialStatics, RebasingKeepsStrainEnergyTriadsAndResidual)
 namespace {
 
 // A dynamic roll-up (8 elements, L = 1 m, EI = 1 N m^2): the end moment
-// 1.5 pi EI/L rises smoothly over 1 s and Kelvin-Voigt damping slows the
-// beam; the tip turns by about 1.5 half-turns, so the beam rebases its
-// references several times during the run.
+// 2 pi EI/L rises smoothly over 1 s and Kelvin-Voigt damping slows the
+// beam; the tip turns by about a whole turn, so the beam rebases its
+// references (at 120 degrees) several times during the run.
 std::string dynamicRollUp()
 {
   return "name: dynamic-roll-up\ndimension: 3\nanalysis: dynamic\ngravity: [0, 0, 0]\nbodies:\n"
@@ -513,7 +513,7 @@ std::string dynamicRollUp()
          "rhoA: 1, rho_Ip: 0.01, eta_bending: 0.3, eta_axial: 0.3, eta_torsion: 0.3}}\n"
          "constraints:\n  - {type: clamp, body: beam, at: start}\n"
          "loads:\n  - {type: point_moment, body: beam, at: end, moment: [0, 0.3, " +
-         number(1.5 * kPi) + "], scale: {type: smooth_step, t0: 0, t1: 1, from: 0, to: 1}}\n"
+         number(2 * kPi) + "], scale: {type: smooth_step, t0: 0, t1: 1, from: 0, to: 1}}\n"
          "dynamic: {t_end: 1.2, dt: 0.02, rho_inf: 0.8}\n";
 }
 
@@ -531,7 +531,7 @@ public:
   {
     PetscFunctionBeginUser;
     const std::vector<double> now = beam().references();
-    if (now != last_) ++rebases, last_ = now;
+    if (now != last_) ++rebases, last_ = now, steps.push_back(s.step);
     if (at_ && s.step == at_) {
       PetscCall(sim_.writeCheckpoint(path_));
       rebasesAtCheckpoint = rebases;
@@ -540,6 +540,7 @@ public:
   }
   const SpatialAncfBeam &beam() const { return dynamic_cast<const SpatialAncfBeam &>(*sim_.model().bodies()[0]); }
   int rebases = 0, rebasesAtCheckpoint = 0;
+  std::vector<int> steps; // at which the beam rebased
 
 private:
   const Simulation &sim_;
@@ -552,7 +553,8 @@ private:
 
 // A restart across rebases continues bit for bit: the checkpoint holds the
 // node references (hook_states), without which the same coordinates would
-// mean other section triads. The run to t_end against a stop at step 30
+// mean other section triads. The run to t_end against a stop between the
+// first and the last rebase
 // (after some rebases, with more to come) and a restart: the same final
 // positions, velocities and references, bitwise (one rank; full Newton).
 TEST(SpatialStatics, RestartAcrossRebasesContinuesBitwise)
@@ -564,9 +566,22 @@ TEST(SpatialStatics, RestartAcrossRebasesContinuesBitwise)
   const Scene scene = parseScene(dynamicRollUp(), "dynamic-roll-up.yaml");
   const std::string path = std::string(BOOMDYN_BINARY_DIR) + "/test_output/spatial_rebase_restart.chk.h5";
   std::remove(path.c_str());
+  // A first run finds the steps that rebase; the checkpoint goes between
+  // the first and the last of them.
+  int at = 0;
+  {
+    Simulation probe(scene, PETSC_COMM_WORLD, testOptions());
+    check(probe.setUp());
+    auto owned = std::make_unique<RebaseCounter>(probe, 0, "");
+    RebaseCounter &c = *owned;
+    probe.addMonitor(std::move(owned));
+    check(probe.run());
+    ASSERT_GE(c.steps.size(), 2u) << "the run must rebase twice";
+    at = (c.steps.front() + c.steps.back()) / 2;
+  }
   Simulation full(scene, PETSC_COMM_WORLD, testOptions());
   check(full.setUp());
-  auto counter = std::make_unique<RebaseCounter>(full, 30, path);
+  auto counter = std::make_unique<RebaseCounter>(full, at, path);
   RebaseCounter &fullCount = *counter;
   full.addMonitor(std::move(counter));
   check(full.run());
@@ -582,8 +597,8 @@ TEST(SpatialStatics, RestartAcrossRebasesContinuesBitwise)
   check(restarted.run());
   ASSERT_TRUE(restarted.summary().completed) << restarted.summary().failure;
   PetscOptionsClearValue(nullptr, "-boom_jacobian_reuse");
-  std::printf("dynamic roll-up: %d rebases in the run, %d before the checkpoint, %d after the restart\n",
-              fullCount.rebases, fullCount.rebasesAtCheckpoint, restartCount.rebases);
+  std::printf("dynamic roll-up: %d rebases in the run, %d before the checkpoint at step %d, %d after the restart\n",
+              fullCount.rebases, fullCount.rebasesAtCheckpoint, at, restartCount.rebases);
   EXPECT_GE(fullCount.rebasesAtCheckpoint, 1);
   EXPECT_GE(fullCount.rebases - fullCount.rebasesAtCheckpoint, 1);
   EXPECT_EQ(restartCount.rebases, fullCount.rebases - fullCount.rebasesAtCheckpoint);
