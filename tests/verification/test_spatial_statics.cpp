@@ -11,6 +11,7 @@
 #include "support.hpp"
 
 #include "boomdyn/spatial_ancf_beam.hpp"
+#include "boomdyn/spatial_embedding.hpp"
 
 #include <Eigen/Geometry>
 
@@ -676,4 +677,54 @@ TEST(SpatialStatics, RollUpExampleSceneFollowsTheArcs)
                   tips.factors[k], tips.tips[k][0], tips.tips[k][1], tips.tips[k][2], exact[0], exact[1], err);
   }
   EXPECT_LT(worst, 1e-4);
+}
+
+// A planar static scene run as a spatial model in its plane
+// (spatialEmbedding, what -boom_spatial does): the cantilever of
+// inputs/cantilever_static.yaml (2 m steel box, 16 elements) under its own
+// weight and a tip load raised to P L^2/EI = 5 (the tip turns by about 70
+// degrees) in 10 load steps: every node's position and slope equal the
+// planar run's to 1e-8 relative, and the out-of-plane coordinates (z, z',
+// twist) stay zero.
+TEST(SpatialStatics, PlanarStaticSceneRunAsSpatialModelInItsPlane)
+{
+  const char *text = R"(
+name: planar-static-cantilever
+analysis: static
+gravity: [0, -9.81]
+bodies:
+  - {name: boom, length: 2.0, elements: 16, section: {E: 2.1e11, rho: 7850, A: 4.056e-3, I: 2.3586272e-5}}
+constraints:
+  - {type: clamp, name: base, body: boom, at: start}
+loads:
+  - {type: point_force, name: tip, body: boom, at: end, force: [0, -6.19e6]}
+static: {load_steps: 10}
+)";
+  const Scene planar = parseScene(text, "planar-static.yaml");
+  const Scene spatial = spatialEmbedding(planar);
+  Final a, b;
+  for (int k = 0; k < 2; ++k) {
+    Simulation sim(k == 0 ? planar : spatial, PETSC_COMM_WORLD, testOptions());
+    check(sim.setUp());
+    sim.addMonitor(std::make_unique<FinalRecorder>(k == 0 ? a : b));
+    check(sim.run());
+  }
+  ASSERT_TRUE(a.completed);
+  ASSERT_TRUE(b.completed);
+  double difference = 0, size = 0, outOfPlane = 0;
+  for (int n = 0; n <= 16; ++n) {
+    const double *p = a.q.data() + 4 * n, *s = b.q.data() + 7 * n;
+    for (int c = 0; c < 2; ++c) {
+      difference = std::max({difference, std::abs(s[c] - p[c]), std::abs(s[3 + c] - p[2 + c])});
+      size = std::max({size, std::abs(p[c]), std::abs(p[2 + c])});
+    }
+    outOfPlane = std::max({outOfPlane, std::abs(s[2]), std::abs(s[5]), std::abs(s[6])});
+  }
+  const double turn = std::atan2(-a.q[4 * 16 + 3], a.q[4 * 16 + 2]);
+  std::printf("planar static scene in its plane: positions and slopes %.3e relative, out of plane %.3e, tip turned "
+              "%.3f rad\n",
+              difference / size, outOfPlane, turn);
+  EXPECT_LT(difference / size, 1e-8);
+  EXPECT_LT(outOfPlane, 1e-12);
+  EXPECT_GT(turn, 1.0);
 }
