@@ -29,10 +29,10 @@ public:
   // The index of the new body's first coordinate.
   PetscInt firstCoordinate() const { return model_.nq_; }
   // Takes the body built on firstCoordinate() and numbers its coordinates.
-  template <typename B> const B &addBody(std::unique_ptr<B> body)
+  template <typename B> B &addBody(std::unique_ptr<B> body)
   {
     model_.nq_ += body->numCoordinates();
-    const B &added = *body;
+    B &added = *body;
     model_.bodies_.push_back(std::move(body));
     return added;
   }
@@ -43,6 +43,9 @@ public:
   {
     model_.bodyConstraints_.emplace_back(std::move(c), mark);
   }
+  // A hook the body brings along (a spatial beam rebasing its node
+  // references); it runs before the components' hooks.
+  void addPostStepHook(PostStepHook hook) { model_.postStepHooks_.push_back(std::move(hook)); }
 
 private:
   Model &model_;

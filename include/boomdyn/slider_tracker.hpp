@@ -32,12 +32,21 @@ public:
   // relocated: some hook changed the topology (pattern rebuilt: redo the
   // solve); offTrack: non-empty message if a hook stops the run (a slider
   // left its track).
+  // Hooks that change the chart only (PostStepHook::changesChartOnly) are
+  // left out here and run by rechart() at an accepted state.
   PetscErrorCode update(Vec x, double t, bool *relocated, std::string *offTrack);
-  // Each hook's checkpointed state (for sliding joints: the material
+  // Runs the chart-changing hooks at an accepted step or converged load
+  // step x (collective).
+  PetscErrorCode rechart(Vec x, double t);
+  // Each hook's checkpointed location (for sliding joints: the material
   // coordinate that defines the current track element), and the inverse
-  // (collective: rebuilds the pattern).
+  // (collective: rebuilds the pattern). Hooks without a location are skipped.
   std::vector<double> locations() const;
   PetscErrorCode setLocations(const std::vector<double> &s);
+  // The hooks' other checkpointed state (PostStepHook::state, e.g. beam node
+  // references), concatenated in hook order, and the inverse.
+  std::vector<double> states() const;
+  PetscErrorCode setStates(const std::vector<double> &values);
   bool active() const { return !assembler_.model().postStepHooks().empty(); }
 
 private:

@@ -2,11 +2,13 @@
 // n equal ANCF14 elements (spatial_beam_element.hpp, docs/model.md §1.7).
 // Coordinates per node: position r (3), slope r' (3), twist theta (1), node
 // after node, so element e uses the 14 coordinates 7e .. 7e + 13 of the
-// body's block. Each node keeps the reference triad it starts with (the
-// initial section triad); the smallest rotation from it to the current
-// tangent is singular when the tangent has turned by half a turn, so a run
-// in which a node's tangent turns by more than about 170 degrees is refused
-// (SpatialBeamElementItem checks it) instead of rebasing the references.
+// body's block. Each node has a reference triad (the initial section triad
+// at the start); the smallest rotation from it to the current tangent is
+// singular at half a turn, so the beam rebases its references (rebase())
+// after converged steps and load steps once a node's tangent has turned far
+// from its reference: a change of chart that keeps the state, which lets
+// the tangents turn without limit. The references are part of the state a
+// checkpoint saves (references(), setReferences()).
 #pragma once
 
 #include "boomdyn/spatial_beam_element.hpp"
@@ -14,6 +16,7 @@
 #include "boomdyn/work_item.hpp"
 
 #include <memory>
+#include <vector>
 
 namespace boomdyn {
 
@@ -36,19 +39,33 @@ public:
                                double &curvature) const override;
 
   int numElements() const { return elements_; }
-  double elementLength() const { return geometry_.l; }
+  double elementLength() const { return l_; }
   const spatial_beam::Section &section() const { return section_; }
-  // Every element's geometry: its length and the node reference triads
-  // (all equal to the initial triad: the beam starts straight).
-  const spatial_beam::Geometry &geometry() const { return geometry_; }
+  // An element's geometry: its length and its two nodes' reference triads.
+  spatial_beam::Geometry geometry(int element) const { return {l_, {frames_[element], frames_[element + 1]}}; }
   PetscInt elementDof(int element, int k) const { return first_ + 7 * element + k; }
+  // Global indices of every node's slope (3 per node, node after node).
+  std::vector<PetscInt> slopeDofs() const;
+
+  // Rebasing (docs/model.md §1.7): if some node's tangent (slopes: 3 per
+  // node, node after node) has turned from its reference tangent by more
+  // than kRebaseAngle, every node's reference becomes its current
+  // zero-twist triad (rebasedNodeFrame): the same twists give the same
+  // section triads, strains and energy. Returns whether it rebased.
+  // always: rebase whatever the angles (tests).
+  static constexpr double kRebaseAngle = 120.0; // degrees
+  bool rebase(const double *slopes, bool always = false);
+  // The node references as 6 numbers per node (tangent, normal), and back.
+  std::vector<double> references() const;
+  void setReferences(const double *values);
 
 private:
   int elements_;
   spatial_beam::Section section_;
   Vec3 origin_;
   Mat3 triad_;
-  spatial_beam::Geometry geometry_;
+  double l_;
+  std::vector<spatial_beam::NodeFrame> frames_; // one per node
 };
 
 // Inertia, gravity, elastic and Kelvin-Voigt forces of one element.

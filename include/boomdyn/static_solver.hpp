@@ -1,11 +1,14 @@
 // Static equilibrium f_int(q) - load * Q_ext + C_q^T lambda = 0, C(q, t) = 0 by
 // Newton (SNES) with load stepping: the load factor goes from 0 to 1 in equal
 // increments; an increment that fails is halved and retried (up to a limit),
-// and a final failure is reported, never accepted.
+// and a final failure is reported, never accepted. After every converged
+// increment the spatial beams rebase their node references (a change of
+// chart, PostStepHook::changesChartOnly).
 #pragma once
 
 #include "boomdyn/newton_solver.hpp"
 #include "boomdyn/petsc_handle.hpp"
+#include "boomdyn/slider_tracker.hpp"
 
 #include <functional>
 #include <string>
@@ -21,7 +24,7 @@ struct LoadStepInfo {
 
 class StaticSolver {
 public:
-  explicit StaticSolver(Assembler &assembler) : assembler_(assembler) {}
+  explicit StaticSolver(Assembler &assembler) : assembler_(assembler), charts_(assembler) {}
   StaticSolver(const StaticSolver &) = delete;
   StaticSolver &operator=(const StaticSolver &) = delete;
 
@@ -38,6 +41,7 @@ public:
 
 private:
   Assembler &assembler_;
+  SliderTracker charts_; // runs the chart-changing hooks (beam rebasing) after each converged increment
   NewtonSolver newton_;
   PetscHandle<Vec> lambda_, backup_;
   double sigma_ = 1, structureSize_ = 0;

@@ -11,13 +11,55 @@ namespace sb = spatial_beam;
 SpatialAncfBeam::SpatialAncfBeam(std::string name, double length, int elements, const sb::Section &section,
                                  const Vec3 &origin, const Mat3 &triad, PetscInt first)
   : SpatialBody(std::move(name), length, first), elements_(elements), section_(section), origin_(origin),
-    triad_(triad), geometry_(sb::straightGeometry(triad, length / elements))
+    triad_(triad), l_(length / elements), frames_(elements + 1, sb::NodeFrame{triad.col(0), triad.col(1)})
 {
+}
+
+std::vector<PetscInt> SpatialAncfBeam::slopeDofs() const
+{
+  std::vector<PetscInt> dofs;
+  for (int n = 0; n <= elements_; ++n)
+    for (int c = 0; c < 3; ++c) dofs.push_back(first_ + 7 * n + 3 + c);
+  return dofs;
+}
+
+bool SpatialAncfBeam::rebase(const double *slopes, bool always)
+{
+  // All nodes together, so that the two references of an element always
+  // come from the same state (their twist angle beta stays small).
+  const double limit = std::cos(kRebaseAngle * M_PI / 180.0);
+  bool far = always;
+  for (int n = 0; n <= elements_ && !far; ++n) {
+    const Eigen::Map<const Vec3> slope(slopes + 3 * n);
+    far = slope.dot(frames_[n].tangent) < limit * slope.norm();
+  }
+  if (!far) return false;
+  for (int n = 0; n <= elements_; ++n)
+    frames_[n] = sb::rebasedNodeFrame(frames_[n], Eigen::Map<const Vec3>(slopes + 3 * n));
+  return true;
+}
+
+std::vector<double> SpatialAncfBeam::references() const
+{
+  std::vector<double> values;
+  for (const sb::NodeFrame &f : frames_) {
+    values.insert(values.end(), f.tangent.data(), f.tangent.data() + 3);
+    values.insert(values.end(), f.normal.data(), f.normal.data() + 3);
+  }
+  return values;
+}
+
+void SpatialAncfBeam::setReferences(const double *values)
+{
+  for (std::size_t n = 0; n < frames_.size(); ++n) {
+    frames_[n].tangent = Eigen::Map<const Vec3>(values + 6 * n);
+    frames_[n].normal = Eigen::Map<const Vec3>(values + 6 * n + 3);
+  }
 }
 
 void SpatialAncfBeam::initialCoordinates(double *q) const
 {
-  const double l = geometry_.l;
+  const double l = l_;
   for (int n = 0; n <= elements_; ++n) {
     Eigen::Map<Vec3>(q + 7 * n) = origin_ + (n * l) * triad_.col(0);
     Eigen::Map<Vec3>(q + 7 * n + 3) = triad_.col(0);
@@ -27,7 +69,7 @@ void SpatialAncfBeam::initialCoordinates(double *q) const
 
 SpatialLocation SpatialAncfBeam::locate(double s) const
 {
-  const double l = geometry_.l;
+  const double l = l_;
   const int el = std::clamp(static_cast<int>(std::floor(s / l)), 0, elements_ - 1);
   SpatialLocation loc;
   loc.count = sb::kCoordinates;
@@ -44,14 +86,14 @@ void SpatialAncfBeam::axialStrainAndCurvature(const SpatialLocation &loc, const 
                                               double &curvature) const
 {
   const spatial_beam::Strains e =
-      spatial_beam::strainsAt(geometry_, Eigen::Map<const spatial_beam::Vec14>(values), loc.xi);
+      spatial_beam::strainsAt(geometry(loc.element), Eigen::Map<const spatial_beam::Vec14>(values), loc.xi);
   axial = e.axial, curvature = std::hypot(e.curvature2, e.curvature3);
 }
 
 void SpatialAncfBeam::sample(const SpatialLocation &loc, double s, const double *values, SpatialSample &out) const
 {
   const sb::Vec14 e = Eigen::Map<const sb::Vec14>(values);
-  const sb::SectionFrame f = sb::sectionFrame(geometry_, e, (s - loc.begin) / geometry_.l);
+  const sb::SectionFrame f = sb::sectionFrame(geometry(loc.element), e, (s - loc.begin) / l_);
   out.r = f.r;
   out.triad = f.d;
   out.r_q.setZero();
@@ -70,17 +112,18 @@ void SpatialAncfBeam::curvatureTerm(const SpatialLocation &loc, double s, const 
   if (field == SpatialField::Position) return;
   const sb::Vec14 e = Eigen::Map<const sb::Vec14>(values);
   H.topLeftCorner<sb::kCoordinates, sb::kCoordinates>() =
-      sb::sectionFrameHessian(geometry_, e, (s - loc.begin) / geometry_.l, static_cast<int>(field) - 1, w);
+      sb::sectionFrameHessian(geometry(loc.element), e, (s - loc.begin) / l_, static_cast<int>(field) - 1, w);
 }
 
 namespace {
 
 // The smallest rotation from a node's reference tangent to its current
 // tangent is singular at half a turn and the triad is undefined at a zero
-// slope: beyond about 170 degrees (cos < kTurnLimit), or at a slope shorter
-// than a millionth of the reference one, the element is outside the chart
-// of its fixed references and its residual is NaN (Newton reports a domain
-// error and the step is cut).
+// slope: beyond about 170 degrees (cos < kTurnLimit) from the reference,
+// which rebasing (SpatialAncfBeam::rebase) keeps within 120 degrees of the
+// tangent at accepted states, or at a slope shorter than a millionth of the
+// reference one, the element is outside the chart of its references and its
+// residual is NaN (Newton reports a domain error and the step is cut).
 constexpr double kTurnLimit = -0.985;
 
 bool insideChart(const sb::Geometry &geo, const sb::Vec14 &e)
@@ -116,7 +159,7 @@ void SpatialBeamElementItem::evaluate(const AssemblyContext &ctx, const ItemValu
   const Eigen::Map<const sb::Vec14> q(in.q), v(in.v), a(in.a);
   Eigen::Map<sb::Vec14> r(residual);
   const sb::Section &sec = beam_->section();
-  const sb::Geometry &geo = beam_->geometry();
+  const sb::Geometry geo = beam_->geometry(element_);
   if (!insideChart(geo, q)) {
     r.setConstant(std::numeric_limits<double>::quiet_NaN());
     return;
@@ -146,11 +189,11 @@ void SpatialBeamElementItem::energy(const AssemblyContext &ctx, const ItemValues
   const Eigen::Map<const sb::Vec14> q(in.q), v(in.v);
   e.kinetic += 0.5 * v.dot((*mass_) * v);
   const sb::Section &sec = beam_->section();
-  const double u = sb::strainEnergy(sec, beam_->geometry(), q);
+  const double u = sb::strainEnergy(sec, beam_->geometry(element_), q);
   e.strain += u;
   if (sec.damped()) {
     sb::Vec14 fd;
-    e.dissipation += sb::dampingForce(sec, beam_->geometry(), q, v, fd, nullptr, nullptr);
+    e.dissipation += sb::dampingForce(sec, beam_->geometry(element_), q, v, fd, nullptr, nullptr);
   }
   // Round-off of the strains, as in the planar element: curvature and
   // torsion eps |q| / l^2, axial strain eps |q| / l.
@@ -167,7 +210,7 @@ bool SpatialBeamElementItem::dampingForce(const ItemValues &in, double *f) const
   const sb::Section &sec = beam_->section();
   if (!sec.damped()) return false;
   sb::Vec14 fd;
-  sb::dampingForce(sec, beam_->geometry(), Eigen::Map<const sb::Vec14>(in.q), Eigen::Map<const sb::Vec14>(in.v), fd,
+  sb::dampingForce(sec, beam_->geometry(element_), Eigen::Map<const sb::Vec14>(in.q), Eigen::Map<const sb::Vec14>(in.v), fd,
                    nullptr, nullptr);
   Eigen::Map<sb::Vec14>{f} = fd;
   return true;
@@ -177,7 +220,7 @@ void SpatialBeamElementItem::scales(const ItemValues &in, double &massDiag, doub
 {
   sb::Vec14 f;
   sb::Mat14 K;
-  sb::internalForce(beam_->section(), beam_->geometry(), Eigen::Map<const sb::Vec14>(in.q), f, &K);
+  sb::internalForce(beam_->section(), beam_->geometry(element_), Eigen::Map<const sb::Vec14>(in.q), f, &K);
   // Position entries only: slope and twist entries carry other units.
   for (int a = 0; a < 2; ++a)
     for (int c = 0; c < 3; ++c) {
@@ -205,7 +248,7 @@ void SpatialBeamElementItem::modeEnergy(const PencilPass &stiffness, int n, cons
   WorkItem::modeEnergy(stiffness, n, shape, scratch, whole);
   const double total = whole.kind[static_cast<int>(ModeEnergyKind::Geometric)];
   const sb::Vec14 q = Eigen::Map<const sb::Vec14>(stiffness.in.q), s = Eigen::Map<const sb::Vec14>(shape);
-  const sb::Geometry &geo = beam_->geometry();
+  const sb::Geometry geo = beam_->geometry(element_);
   sb::Section axial = beam_->section();
   axial.etaA = 1, axial.etaB = 0, axial.etaT = 0;
   sb::Section torsion = axial, inPlane = axial, outOfPlane = axial;

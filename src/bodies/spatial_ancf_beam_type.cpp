@@ -158,6 +158,27 @@ std::optional<SpecIssue> checkSpatialAncfBeam(const ComponentSpec &spec, const S
   return std::nullopt;
 }
 
+// Rebasing of the node references (docs/model.md §1.7) at accepted steps
+// and converged load steps, from the node slopes every rank receives: the
+// same decision on every rank. The Model owns the beam and the hook.
+PostStepHook rebaseHook(SpatialAncfBeam &beam)
+{
+  PostStepHook hook;
+  hook.name = beam.name();
+  hook.watched = beam.slopeDofs();
+  hook.changesChartOnly = true;
+  SpatialAncfBeam *b = &beam;
+  hook.afterStep = [b](const double *slopes, double t, bool *, std::string *) -> PetscErrorCode {
+    PetscFunctionBeginUser;
+    if (b->rebase(slopes))
+      PetscCall(PetscInfo(nullptr, "t = %g: beam '%s' rebases its node references\n", t, b->name().c_str()));
+    PetscFunctionReturn(0);
+  };
+  hook.state = [b] { return b->references(); };
+  hook.setState = [b](const double *values) { b->setReferences(values); };
+  return hook;
+}
+
 void buildSpatialAncfBeam(const BodySpec &b, BodyBuilder &builder)
 {
   Mat3 triad;
@@ -166,11 +187,12 @@ void buildSpatialAncfBeam(const BodySpec &b, BodyBuilder &builder)
   const sb::Section sec = sectionOf(b);
   auto owned = std::make_unique<SpatialAncfBeam>(b.name, b.length, b.elements, sec, vec(b.origin3), triad,
                                                  builder.firstCoordinate());
-  const SpatialAncfBeam &beam = builder.addBody(std::move(owned));
+  SpatialAncfBeam &beam = builder.addBody(std::move(owned));
   // All elements are equal: one mass matrix, shared.
   auto mass = std::make_shared<const sb::Mat14>(sb::massMatrix(sec, beam.elementLength()));
   for (int el = 0; el < beam.numElements(); ++el)
     builder.addItem(std::make_unique<SpatialBeamElementItem>(beam, el, mass, builder.gravity3()));
+  builder.addPostStepHook(rebaseHook(beam));
 }
 
 // Largest omega^2 of one straight, unstrained element: K v = omega^2 M v.

@@ -56,7 +56,7 @@ void SpatialSlidingJoint::evaluate(double, const double *q, const double *v, con
   const double *qb = q + nt;
   const double s = q[is];
   const sb::SlackFrame F =
-      sb::slackFrame(track_->geometry(), Eigen::Map<const sb::Vec14>(q), (s - trackLoc_.begin) / track_->elementLength());
+      sb::slackFrame(track_->geometry(trackLoc_.element), Eigen::Map<const sb::Vec14>(q), (s - trackLoc_.begin) / track_->elementLength());
   SpatialSample pb;
   slider_->sample(sliderLoc_, xP_, qb, pb);
 

@@ -166,18 +166,6 @@ void SceneParser::parse(const Field &root, Scene &scene)
   else if (const auto m = top.get("modal"))
     scene.modal = parseModal(*m, false);
 
-  if (scene.dimension == 3) {
-    // Statics of a spatial model is not verified yet: refused, not guessed.
-    // Modal analysis and tracking are (docs/model.md §5); a modal analysis
-    // at the end of `analysis: modal` solves the statics first.
-    const char *why = "is not available for spatial scenes (dimension: 3) yet; run a dynamic analysis";
-    if (scene.analysis == Scene::Analysis::Static)
-      report_.fail(top.require("analysis"), std::string("static ") + why);
-    if (scene.analysis == Scene::Analysis::Modal && scene.modal.at != "start")
-      report_.fail(top.require("modal"), std::string("a modal analysis at the static equilibrium (at: end) ") + why +
-                                             " or a modal analysis at the initial state (at: start)");
-    if (scene.dynamic.startStatic) report_.fail(top.require("dynamic"), std::string("'initial: static' ") + why);
-  }
   parseSection(top, "springs", "springs", scene);
   if (const auto tr = top.get("tracking")) {
     if (scene.analysis != Scene::Analysis::Dynamic)

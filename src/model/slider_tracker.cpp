@@ -7,6 +7,35 @@
 
 namespace boomdyn {
 
+namespace {
+
+// The hooks with changesChartOnly == chartOnly, on the watched values of x
+// (scattered to every rank into slacks).
+PetscErrorCode runHooks(const std::vector<PostStepHook> &hooks, VecScatter scatter, Vec slacks, Vec x, double t,
+                        bool chartOnly, bool *changed, std::string *stop)
+{
+  const PetscScalar *values;
+  PetscFunctionBeginUser;
+  *changed = false;
+  stop->clear();
+  if (hooks.empty()) PetscFunctionReturn(0);
+  PetscCall(VecScatterBegin(scatter, x, slacks, INSERT_VALUES, SCATTER_FORWARD));
+  PetscCall(VecScatterEnd(scatter, x, slacks, INSERT_VALUES, SCATTER_FORWARD));
+  PetscCall(VecGetArrayRead(slacks, &values));
+  std::size_t offset = 0;
+  for (const PostStepHook &h : hooks) {
+    bool hookChanged = false;
+    if (h.changesChartOnly == chartOnly) PetscCall(h.afterStep(values + offset, t, &hookChanged, stop));
+    offset += h.watched.size();
+    if (!stop->empty()) break;
+    *changed = *changed || hookChanged;
+  }
+  PetscCall(VecRestoreArrayRead(slacks, &values));
+  PetscFunctionReturn(0);
+}
+
+} // namespace
+
 PetscErrorCode SliderTracker::setUp(Vec layout)
 {
   PetscFunctionBeginUser;
@@ -23,42 +52,66 @@ PetscErrorCode SliderTracker::setUp(Vec layout)
 
 PetscErrorCode SliderTracker::update(Vec x, double t, bool *relocated, std::string *offTrack)
 {
-  const PetscScalar *values;
   PetscFunctionBeginUser;
-  *relocated = false;
-  offTrack->clear();
-  if (!active()) PetscFunctionReturn(0);
-  PetscCall(VecScatterBegin(scatter_, x, slacks_, INSERT_VALUES, SCATTER_FORWARD));
-  PetscCall(VecScatterEnd(scatter_, x, slacks_, INSERT_VALUES, SCATTER_FORWARD));
-  PetscCall(VecGetArrayRead(slacks_, &values));
-  std::size_t offset = 0;
-  for (const PostStepHook &h : assembler_.model().postStepHooks()) {
-    bool changed = false;
-    PetscCall(h.afterStep(values + offset, t, &changed, offTrack));
-    offset += h.watched.size();
-    if (!offTrack->empty()) break;
-    *relocated = *relocated || changed;
-  }
-  PetscCall(VecRestoreArrayRead(slacks_, &values));
+  PetscCall(runHooks(assembler_.model().postStepHooks(), scatter_, slacks_, x, t, false, relocated, offTrack));
   if (*relocated && offTrack->empty()) PetscCall(assembler_.rebuildPattern());
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SliderTracker::rechart(Vec x, double t)
+{
+  bool unusedChanged;
+  std::string unusedStop; // a change of chart never stops a run
+  PetscFunctionBeginUser;
+  PetscCall(runHooks(assembler_.model().postStepHooks(), scatter_, slacks_, x, t, true, &unusedChanged, &unusedStop));
   PetscFunctionReturn(0);
 }
 
 std::vector<double> SliderTracker::locations() const
 {
   std::vector<double> s;
-  for (const PostStepHook &h : assembler_.model().postStepHooks()) s.push_back(h.location());
+  for (const PostStepHook &h : assembler_.model().postStepHooks())
+    if (h.location) s.push_back(h.location());
   return s;
 }
 
 PetscErrorCode SliderTracker::setLocations(const std::vector<double> &s)
 {
   PetscFunctionBeginUser;
-  const auto &hooks = assembler_.model().postStepHooks();
-  PetscCheck(s.size() == hooks.size(), assembler_.comm(), PETSC_ERR_FILE_UNEXPECTED,
-             "restart file has %zu sliding joint locations, the scene %zu", s.size(), hooks.size());
-  for (std::size_t k = 0; k < hooks.size(); ++k) hooks[k].setLocation(s[k]);
-  if (!hooks.empty()) PetscCall(assembler_.rebuildPattern());
+  std::vector<const PostStepHook *> located;
+  for (const PostStepHook &h : assembler_.model().postStepHooks())
+    if (h.location) located.push_back(&h);
+  PetscCheck(s.size() == located.size(), assembler_.comm(), PETSC_ERR_FILE_UNEXPECTED,
+             "restart file has %zu sliding joint locations, the scene %zu", s.size(), located.size());
+  for (std::size_t k = 0; k < located.size(); ++k) located[k]->setLocation(s[k]);
+  if (!located.empty()) PetscCall(assembler_.rebuildPattern());
+  PetscFunctionReturn(0);
+}
+
+std::vector<double> SliderTracker::states() const
+{
+  std::vector<double> values;
+  for (const PostStepHook &h : assembler_.model().postStepHooks())
+    if (h.state) {
+      const std::vector<double> v = h.state();
+      values.insert(values.end(), v.begin(), v.end());
+    }
+  return values;
+}
+
+PetscErrorCode SliderTracker::setStates(const std::vector<double> &values)
+{
+  PetscFunctionBeginUser;
+  PetscCheck(values.size() == states().size(), assembler_.comm(), PETSC_ERR_FILE_UNEXPECTED,
+             "restart file has %zu numbers of post-step state (beam node references), the scene %zu", values.size(),
+             states().size());
+  std::size_t offset = 0;
+  for (const PostStepHook &h : assembler_.model().postStepHooks())
+    if (h.state) {
+      const std::size_t n = h.state().size();
+      h.setState(values.data() + offset);
+      offset += n;
+    }
   PetscFunctionReturn(0);
 }
 

@@ -743,6 +743,7 @@ PetscErrorCode GeneralizedAlpha::advance(double h, double tEnd, StepResult *resu
   if (result->converged) {
     t_ = tEnd;
     startPending_ = false;
+    PetscCall(sliders_.rechart(q_, t_)); // spatial beams rebase their node references
   }
   PetscCall(PetscLogEventEnd(logEvents().step, 0, 0, 0, 0));
   PetscFunctionReturn(0);
@@ -761,6 +762,9 @@ PetscErrorCode GeneralizedAlpha::save(StateWriter &out) const
   out.addScalar("predict_with_acceleration", predictWithAcceleration_ ? 1.0 : 0.0);
   out.addScalar("start_pending", startPending_ ? 1.0 : 0.0);
   out.addArray("slider_locations", sliders_.locations());
+  // Other post-step state (spatial beams' node references), if any.
+  const std::vector<double> hookStates = sliders_.states();
+  if (!hookStates.empty()) out.addArray("hook_states", hookStates);
   PetscFunctionReturn(0);
 }
 
@@ -785,6 +789,9 @@ PetscErrorCode GeneralizedAlpha::restore(const StateReader &in)
   // The joints' elements as they were, not as a fresh search would choose
   // them within the relocation band: restarts continue bitwise.
   PetscCall(sliders_.setLocations(in.array("slider_locations")));
+  // The beams' node references as they were: the same coordinates mean the
+  // same state only in the same chart.
+  if (!sliders_.states().empty()) PetscCall(sliders_.setStates(in.array("hook_states")));
   newton_.invalidateJacobian();
   // The reported multipliers depend on the state alone.
   if (consistentMultipliers_) PetscCall(reportMultipliers());

@@ -18,6 +18,7 @@ PetscErrorCode StaticSolver::setUp()
   PetscCall(assembler_.createVector(lambda_.address()));
   PetscCall(assembler_.createVector(backup_.address()));
   PetscCall(newton_.setUp(assembler_, "static_", 50, false));
+  PetscCall(charts_.setUp(backup_));
   PetscFunctionReturn(0);
 }
 
@@ -78,6 +79,7 @@ PetscErrorCode StaticSolver::solve(double t, int loadSteps, Vec x,
     }
     if (reason > 0) {
       done = target;
+      PetscCall(charts_.rechart(x, done));
       // Unscaled multipliers of this increment, for the caller's outputs.
       PetscCall(VecSet(lambda_, 0.0));
       PetscCall(assembler_.copyMultipliers(x, lambda_, sigma_));

@@ -130,7 +130,7 @@ TEST(SpatialSlackFrame, DerivativesInCoordinatesAndArcLength)
   std::mt19937 rng(361);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
   const SlidingSetup st;
-  const sb::Geometry &geo = st.track.geometry();
+  const sb::Geometry geo = st.track.geometry(0); // the element whose coordinates follow the slider's 7
   for (int trial = 0; trial < 6; ++trial) {
     const std::vector<double> qg = randomGlobal(st.q0, rng, 0.1);
     const sb::Vec14 e = Eigen::Map<const sb::Vec14>(qg.data() + 7);

@@ -1,7 +1,8 @@
 // Spatial ANCF beams (type ancf_beam, dimension: 3) through the whole
 // pipeline (scene -> model -> assembly -> generalized-alpha TS), against
 // closed forms derived here: roll-up of a cantilever under an end moment
-// (damped to rest: statics is not yet available in spatial scenes), the
+// (damped to rest: the dynamic path to the static solution; statics of
+// spatial scenes: test_spatial_statics.cpp), the
 // first bending frequency in both planes and the first torsional frequency
 // from free vibration, energy conservation at rho_inf = 1, and a planar
 // beam scene run as a spatial model in its plane (-boom_spatial).
