@@ -12,7 +12,7 @@ namespace {
 {
   throw SpatialEmbeddingError(mark.file + ":" + std::to_string(mark.line) + ": key '" + mark.key + "': " + what +
                               " cannot run as a spatial model yet (-boom_spatial takes rigid bodies, ANCF beams, pins, clamps, "
-                              "angle drives, point forces and point masses)");
+                              "angle drives, point forces, point masses and point sensors)");
 }
 
 Vec3d inPlane(const Vec2d &v) { return {v[0], v[1], 0.0}; }
@@ -46,8 +46,9 @@ Scene spatialEmbedding(const Scene &planar)
   s.gravity3 = inPlane(planar.gravity);
   s.constraints.clear(), s.forces.clear(), s.masses.clear();
   if (!planar.springs.empty()) refuse(planar.springs[0].mark, "spring '" + planar.springs[0].name + "'");
-  if (!planar.output.sensors.empty() || !planar.output.frames.empty())
-    refuse(planar.output.sensors.empty() ? planar.output.frames[0].mark : planar.output.sensors[0].mark, "a sensor");
+  // Point sensors carry over as they are (body and at); a frame sensor's
+  // moving axis needs a sliding joint, which does not.
+  if (!planar.output.frames.empty()) refuse(planar.output.frames[0].mark, "a frame sensor");
   if (planar.tracking.interval > 0 || planar.modal.count > 0 || planar.analysis == Scene::Analysis::Modal)
     throw SpatialEmbeddingError(planar.file + ": -boom_spatial: modal analysis and frequency tracking of spatial "
                                               "models are not available yet");
