@@ -78,32 +78,34 @@ std::string vec(const Eigen::Vector3d &v)
 
 } // namespace
 
-// A rigid arm (L = 2 m, s = 0 on a hinge at p) turned about the tilted axis
-// n = (1, 2, 2)/3 at the constant rate w = 2 rad/s (a ramp drive, the arm
-// given the same angular velocity at t = 0). Its axis starts along
-// a = (2, -1, 0)/sqrt 5, normal to n, its y axis along n. The drive
-// prescribes the rotation, so at every step
-//   triad(t) = exp(w t [n]x) R0,  R0 = [a, n, a x n],
-//   tip r = p + L triad(t) e_x,  velocity w n x (r - p),  angular velocity w n,
+// A rigid arm (L = 2 m, s = 0 on a hinge at p) turned from rest about the
+// tilted axis n = (1, 2, 2)/3 by the angle theta(t) of a smooth_step drive
+// (0 to 2 rad over 1 s: theta = 2 (10 u^3 - 15 u^4 + 6 u^5), u = t / 1 s).
+// Its axis starts along a = (2, -1, 0)/sqrt 5, normal to n, its y axis along
+// n. The drive prescribes the rotation, so at every step
+//   triad(t) = exp(theta(t) [n]x) R0,  R0 = [a, n, a x n],
+//   tip r = p + L triad(t) e_x,  velocity theta' n x (r - p),
+//   angular velocity theta' n,
 // and the twist is 0: the axis turns about n, normal to it, so the smallest
 // rotation from the initial axis is the whole rotation. Gravity loads the
 // hinge but changes none of this. Triad and tip position within 1e-10 (the
 // drive and hinge rows hold to Newton's tolerance); the velocities come from
 // the integrator's velocity update, which the index-3 rows do not make
-// consistent: measured 1e-? (tolerance below).
+// consistent: its O(h^2) error (measured 5.3e-4 of the peak rate at h = 0.01
+// s) against 1e-3 of the peak rate.
 TEST(SpatialSensors, RigidArmTurningAboutATiltedAxisReadsTheExponentialTriad)
 {
   const Eigen::Vector3d n = Eigen::Vector3d(1, 2, 2) / 3.0, a = Eigen::Vector3d(2, -1, 0).normalized(),
                         p(0.5, -0.3, 0.2);
-  const double w = 2.0, L = 2.0, tEnd = 1.0;
+  const double turn = 2.0, L = 2.0;
   const std::string scene =
       "name: tilted-turn\ndimension: 3\nanalysis: dynamic\ngravity: [0, 0, -9.81]\nbodies:\n"
       "  - {name: arm, type: rigid, length: 2.0, mass: 3.0, inertia: [0.1, 1.0, 1.1], origin: " + vec(p) +
-      ", axis: " + vec(a) + ", up: " + vec(n) + ", angular_velocity: " + vec(w * n) + "}\n"
+      ", axis: " + vec(a) + ", up: " + vec(n) + "}\n"
       "constraints:\n"
       "  - {type: revolute_joint, body: arm, at: start, axis: " + vec(n) + "}\n"
       "  - {type: angle_drive, body: arm, at: start, axis: " + vec(n) +
-      ", angle: {type: ramp, t0: 0, t1: 1, from: 0, to: " + number(w * tEnd * 180.0 / kPi) + "}}\n"
+      ", angle: {type: smooth_step, t0: 0, t1: 1, from: 0, to: " + number(turn * 180.0 / kPi) + "}}\n"
       "output:\n  sensors:\n    - {name: tip, body: arm, at: end}\n"
       "  frames:\n    - {name: tip, body: arm, at: end}\n    - {name: middle, body: arm, at: 1.0}\n"
       "dynamic: {t_end: 1.0, dt: 0.01, rho_inf: 0.8}\n";
@@ -113,31 +115,32 @@ TEST(SpatialSensors, RigidArmTurningAboutATiltedAxisReadsTheExponentialTriad)
   ASSERT_EQ(h.sections.back().size(), 2u);
   Eigen::Matrix3d R0;
   R0 << a, n, a.cross(n);
-  const double rate = w;
   double triad = 0, tip = 0, velocity = 0, omega = 0, twist = 0;
   for (std::size_t k = 0; k < h.t.size(); ++k) {
-    const Eigen::Matrix3d R = Eigen::AngleAxisd(rate * h.t[k], n).toRotationMatrix() * R0;
+    const double u = h.t[k], angle = turn * u * u * u * (10 - 15 * u + 6 * u * u),
+                 rate = turn * 30 * u * u * (1 - 2 * u + u * u);
+    const Eigen::Matrix3d R = Eigen::AngleAxisd(angle, n).toRotationMatrix() * R0;
     const Eigen::Vector3d r = p + L * R.col(0);
     for (const SectionReading &s : h.sections[k]) {
       triad = std::max(triad, (s.triad - R).cwiseAbs().maxCoeff());
-      omega = std::max(omega, (s.angularVelocity - rate * n).norm() / rate);
+      omega = std::max(omega, (s.angularVelocity - rate * n).norm() / (1.875 * turn));
       twist = std::max(twist, std::abs(s.twist));
     }
     EXPECT_LT((h.sections[k][1].position - (p + 1.0 * R.col(0))).norm(), 1e-10);
     const SensorReading &s = h.points[k][0];
     tip = std::max(tip, (s.position3 - r).norm() / L);
-    velocity = std::max(velocity, (s.velocity3 - rate * n.cross(r - p)).norm() / (rate * L));
+    velocity = std::max(velocity, (s.velocity3 - rate * n.cross(r - p)).norm() / (1.875 * turn * L));
     EXPECT_EQ(s.position, s.position3.head<2>());
     EXPECT_LT((h.sections[k][0].position - s.position3).norm(), 1e-14);
   }
-  std::printf("rigid arm about a tilted axis, %zu states: triad error %.2e, tip %.2e L, velocity %.2e w L, "
-              "angular velocity %.2e w, twist %.2e rad, constraint violation %.2e\n",
+  std::printf("rigid arm about a tilted axis, %zu states: triad error %.2e, tip %.2e L, velocity %.2e of the peak rate L, "
+              "angular velocity %.2e of the peak rate, twist %.2e rad, constraint violation %.2e\n",
               h.t.size(), triad, tip, velocity, omega, twist, h.violation);
   EXPECT_LT(triad, 1e-10);
   EXPECT_LT(tip, 1e-10);
   EXPECT_LT(twist, 1e-10);
-  EXPECT_LT(velocity, 1e-6);
-  EXPECT_LT(omega, 1e-6);
+  EXPECT_LT(velocity, 1e-3);
+  EXPECT_LT(omega, 1e-3);
 }
 
 // A cantilever (L = 1 m along x, 4 elements, GJ = 1 N m^2) under an end
