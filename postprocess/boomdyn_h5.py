@@ -11,6 +11,8 @@ import numpy as np
 
 ENERGY_COLUMNS = ("kinetic", "strain", "gravity potential", "total")
 ANCF_COORDINATES_PER_NODE = 4  # x, y, dx/ds, dy/ds
+SPATIAL_COORDINATES_PER_NODE = 7  # spatial ANCF beam: x, y, z, dx/ds, dy/ds, dz/ds, twist
+STRAIN_COLUMNS = ("axial", "torsion", "curvature2", "curvature3")  # /frames/<name>/strains
 
 
 def open_run(path):
@@ -56,24 +58,43 @@ def is_static(f):
     return attributes(f).get("analysis") == "static"
 
 
+def dimension(f):
+    """3 for a spatial scene, 2 for a planar one (files without /layout's attribute are planar)."""
+    return int(attributes(f, "/layout").get("dimension", 2))
+
+
 @dataclass
 class Body:
     name: str
     first: int  # index of the first coordinate in q
     count: int  # number of coordinates
+    dimension: int = 2  # 3 in a spatial scene
+
+    @property
+    def per_node(self):
+        return SPATIAL_COORDINATES_PER_NODE if self.dimension == 3 else ANCF_COORDINATES_PER_NODE
 
     @property
     def is_beam(self):
         # The layout carries no body type: an ANCF beam is recognized by its
-        # 4 coordinates per node and at least 2 nodes (a rigid body has fewer).
-        return self.count >= 2 * ANCF_COORDINATES_PER_NODE and self.count % ANCF_COORDINATES_PER_NODE == 0
+        # coordinates per node (4 planar, 7 spatial) and at least 2 nodes (a
+        # rigid body has fewer: 3 planar, 7 spatial).
+        return self.count >= 2 * self.per_node and self.count % self.per_node == 0
 
-    def node_positions(self, q):
-        """Nodal (x, y) of this beam from q of shape (..., nq): shape (..., nodes, 2)."""
+    def _nodes(self, q):
         q = np.asarray(q)
         block = q[..., self.first:self.first + self.count]
-        nodes = block.reshape(q.shape[:-1] + (self.count // ANCF_COORDINATES_PER_NODE, ANCF_COORDINATES_PER_NODE))
-        return nodes[..., :2]
+        return block.reshape(q.shape[:-1] + (self.count // self.per_node, self.per_node))
+
+    def node_positions(self, q):
+        """Nodal positions of this beam from q of shape (..., nq): shape (..., nodes, 2), spatial (..., nodes, 3)."""
+        return self._nodes(q)[..., :self.dimension]
+
+    def node_twists(self, q):
+        """Twist coordinates (rad) of a spatial beam's nodes: shape (..., nodes). They are measured from
+        reference triads that the beam may move (docs/model.md §1.7); /frames/<name>/twist is measured from
+        the initial section."""
+        return self._nodes(q)[..., 6]
 
 
 @dataclass
@@ -89,6 +110,7 @@ class Layout:
     nlambda: int
     bodies: list = field(default_factory=list)
     constraints: list = field(default_factory=list)
+    dimension: int = 2
 
     def body(self, name):
         return next(b for b in self.bodies if b.name == name)
@@ -98,15 +120,16 @@ def load_layout(f):
     if "layout" not in f:
         return None
     g = f["layout"]
+    dim = dimension(f)
     bodies, constraints = [], []
     if "body_names" in g:
-        bodies = [Body(name, int(first), int(count)) for name, first, count in
+        bodies = [Body(name, int(first), int(count), dim) for name, first, count in
                   zip(_strings(g["body_names"]), g["body_first_coordinate"][()], g["body_num_coordinates"][()])]
     if "constraint_names" in g:
         constraints = [Constraint(name, int(first), int(rows)) for name, first, rows in
                        zip(_strings(g["constraint_names"]), g["constraint_first_row"][()],
                            g["constraint_num_rows"][()])]
-    return Layout(int(g.attrs.get("nq", 0)), int(g.attrs.get("nlambda", 0)), bodies, constraints)
+    return Layout(int(g.attrs.get("nq", 0)), int(g.attrs.get("nlambda", 0)), bodies, constraints, dim)
 
 
 def load_steps(f):
@@ -118,7 +141,7 @@ def load_steps(f):
 
 
 def load_sensors(f):
-    """{sensor name: {"position": (n, 2), "velocity": (n, 2)}} with whichever are present."""
+    """{sensor name: {"position": (n, 2), "velocity": (n, 2)}} with whichever are present (spatial: (n, 3))."""
     sensors = {}
     for name, group in f.get("sensors", {}).items():
         series = {key: _array(group, key) for key in ("position", "velocity")}
@@ -126,6 +149,39 @@ def load_sensors(f):
         if series:
             sensors[name] = series
     return sensors
+
+
+def load_frames(f):
+    """The sections of a spatial scene's frame sensors: {name: {"triad": (n, 3, 3) (column j is d_(j+1)),
+    "twist": (n), "angular_velocity": (n, 3), "strains": (n, 4) (STRAIN_COLUMNS)}}, whichever are present."""
+    frames = {}
+    for name, group in f.get("frames", {}).items():
+        series = {key: _array(group, key) for key in ("triad", "twist", "angular_velocity", "strains")}
+        if series["triad"] is not None:
+            series["triad"] = series["triad"].reshape(-1, 3, 3)
+        series = {key: data for key, data in series.items() if data is not None}
+        if series:
+            frames[name] = series
+    return frames
+
+
+def load_polylines(f):
+    """The sampled booms of /paraview: [(time, [polyline (points, 3), ...], {field: (points, ...)})], one
+    entry per snapshot, the polylines split where the segments of one body end (docs/output.md)."""
+    group = f.get("paraview")
+    if group is None or "segments" not in group:
+        return []
+    segments = group["segments"][()]
+    # A polyline ends where the next segment does not start at the previous one's end.
+    starts = [0] + [k for k in range(1, len(segments)) if segments[k][0] != segments[k - 1][1]]
+    ranges = [(segments[a][0], segments[b - 1][1] + 1) for a, b in zip(starts, starts[1:] + [len(segments)])]
+    snapshots = []
+    for key in sorted((k for k in group if k.isdigit()), key=int):
+        g = group[key]
+        points = g["points"][()]
+        fields = {name: g[name][()] for name in g if name != "points" and not name.startswith("rope_")}
+        snapshots.append((float(g.attrs.get("time", np.nan)), [points[a:b] for a, b in ranges], fields))
+    return snapshots
 
 
 def load_states(f):

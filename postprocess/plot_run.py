@@ -4,7 +4,9 @@
 Writes PNG files (sensor positions, tip height, solver effort, constraint
 violation, energy, modal frequencies, boom shapes) into OUTDIR, by default
 RUN's stem + "_plots" beside RUN. Plots whose data the file lacks are skipped,
-so files of failed or partial runs still give what they can.
+so files of failed or partial runs still give what they can. Results of
+spatial scenes (dimension: 3) give x, y, z sensor series, the booms in space
+(boom_shape_3d) and the sections of their frame sensors (section_twist).
 """
 
 import argparse
@@ -62,36 +64,39 @@ class Plotter:
     def sensor_positions(self, steps, sensors):
         if "time" not in steps or not any("position" in s for s in sensors.values()):
             return self.skip("sensor positions", "no /steps/time or /sensors/*/position")
-        fig, (ax_x, ax_y) = self.figure(rows=2, height=3.2)
+        # x, y; spatial scenes' sensors also z.
+        components = max(s["position"].shape[1] for s in sensors.values() if "position" in s)
+        fig, axes = self.figure(rows=components, height=3.2)
         for name, series in sensors.items():
             if "position" in series:
                 n = min(len(steps["time"]), len(series["position"]))
-                ax_x.plot(steps["time"][:n], series["position"][:n, 0], label=name)
-                ax_y.plot(steps["time"][:n], series["position"][:n, 1], label=name)
-        ax_x.set_ylabel("x [m]")
-        ax_y.set_ylabel("y [m]")
-        ax_y.set_xlabel(self.time_axis)
-        for ax in (ax_x, ax_y):
+                for c, ax in enumerate(axes[:series["position"].shape[1]]):
+                    ax.plot(steps["time"][:n], series["position"][:n, c], label=name)
+        for ax, label in zip(axes, ("x [m]", "y [m]", "z [m]")):
+            ax.set_ylabel(label)
             ax.grid(True)
             ax.legend(loc="best", fontsize="small")
+        axes[-1].set_xlabel(self.time_axis)
         self.save(fig, "sensor_positions", "sensor positions")
 
     def tip_height(self, steps, sensors, layout, states):
+        # The height is y in a planar scene, z in a spatial one.
+        up = 2 if layout and layout.dimension == 3 else 1
         tip = tip_sensor(sensors)
-        if tip and "time" in steps and "position" in sensors[tip]:
+        if tip and "time" in steps and "position" in sensors[tip] and sensors[tip]["position"].shape[1] > up:
             n = min(len(steps["time"]), len(sensors[tip]["position"]))
-            t, y, source = steps["time"][:n], sensors[tip]["position"][:n, 1], f"sensor '{tip}'"
+            t, y, source = steps["time"][:n], sensors[tip]["position"][:n, up], f"sensor '{tip}'"
         elif layout and states and any(b.is_beam for b in layout.bodies):
             # Without a tip sensor: the last node of the last beam, at the snapshots only.
             beam = [b for b in layout.bodies if b.is_beam][-1]
-            t, y = states["time"], beam.node_positions(states["q"])[:, -1, 1]
+            t, y = states["time"], beam.node_positions(states["q"])[:, -1, up]
             source = f"last node of '{beam.name}'"
         else:
             return self.skip("tip height", "no sensor named *tip* and no beam snapshots in /state")
         fig, (ax,) = self.figure()
         ax.plot(t, y, marker="." if len(t) < 50 else None)
         ax.set_xlabel(self.time_axis)
-        ax.set_ylabel("tip y [m]")
+        ax.set_ylabel("tip %s [m]" % "xyz"[up])
         ax.grid(True)
         self.save(fig, "tip_vertical_position", f"tip vertical position ({source})")
 
@@ -156,6 +161,57 @@ class Plotter:
         ax.grid(True, axis="y")
         when = "" if modal["state_time"] is None else f" at {self.time_name} {modal['state_time']:g}{self.time_unit}"
         self.save(fig, "modal_frequencies", f"natural frequencies{when}")
+
+    def boom_shapes_3d(self, polylines, layout, states):
+        """The booms in space (mplot3d) at up to SNAPSHOTS_SHOWN snapshots: the sampled axes of every body
+        from /paraview, or else the beam nodes from /state/q."""
+        if polylines:
+            times, shapes = [p[0] for p in polylines], [p[1] for p in polylines]
+        elif layout and states is not None and any(b.is_beam for b in layout.bodies):
+            times = list(states["time"])
+            shapes = [[b.node_positions(q) for b in layout.bodies if b.is_beam] for q in states["q"]]
+        else:
+            return self.skip("boom shapes in space", "no /paraview snapshots and no beams in /state/q")
+        count = min(SNAPSHOTS_SHOWN, len(times))
+        chosen = np.unique(np.linspace(0, len(times) - 1, count).round().astype(int))
+        colors = plt.cm.viridis(np.linspace(0, 1, len(chosen)))
+        fig = plt.figure(figsize=(8, 6))
+        ax = fig.add_subplot(projection="3d")
+        for color, index in zip(colors, chosen):
+            label = f"{self.time_name} = {times[index]:g}{self.time_unit}"
+            for k, line in enumerate(shapes[index]):
+                ax.plot(line[:, 0], line[:, 1], line[:, 2], color=color, label=label if k == 0 else None)
+        points = np.concatenate([line for index in chosen for line in shapes[index]])
+        # Equal scales on the three axes (a straight boom stays straight), around the points' box.
+        centre, half = points.mean(axis=0), max(np.ptp(points, axis=0).max() / 2, 1e-9)
+        for axis, c in zip("xyz", centre):
+            getattr(ax, f"set_{axis}lim")(c - half, c + half)
+        ax.set_xlabel("x [m]")
+        ax.set_ylabel("y [m]")
+        ax.set_zlabel("z [m]")
+        ax.legend(loc="best", fontsize="small")
+        self.save(fig, "boom_shape_3d", "booms in space")
+
+    def section_twist(self, steps, frames):
+        """Twist and strains of the sections of a spatial scene's frame sensors (/frames)."""
+        if "time" not in steps or not any("twist" in s for s in frames.values()):
+            return self.skip("section twist", "no /frames/*/twist (frame sensors of a spatial scene)")
+        fig, (ax_twist, ax_torsion, ax_bending) = self.figure(rows=3, height=3.0)
+        for name, series in frames.items():
+            n = min(len(steps["time"]), len(series.get("twist", [])))
+            t = steps["time"][:n]
+            ax_twist.plot(t, np.degrees(series["twist"][:n]), label=name)
+            if "strains" in series:
+                ax_torsion.plot(t, series["strains"][:n, 1], label=name)
+                ax_bending.plot(t, np.hypot(series["strains"][:n, 2], series["strains"][:n, 3]), label=name)
+        ax_twist.set_ylabel("twist [deg]")
+        ax_torsion.set_ylabel("torsion [1/m]")
+        ax_bending.set_ylabel("|curvature| [1/m]")
+        ax_bending.set_xlabel(self.time_axis)
+        for ax in (ax_twist, ax_torsion, ax_bending):
+            ax.grid(True)
+            ax.legend(loc="best", fontsize="small")
+        self.save(fig, "section_twist", "sections of the frame sensors")
 
     def boom_shapes(self, layout, states):
         beams = [b for b in layout.bodies if b.is_beam] if layout else []
@@ -295,7 +351,11 @@ def plot_run(run_path, outdir=None):
         plotter.constraint_violation(steps)
         plotter.energy(steps)
         plotter.modal_frequencies(boomdyn_h5.load_modal(f))
-        plotter.boom_shapes(layout, states)
+        if layout and layout.dimension == 3:
+            plotter.boom_shapes_3d(boomdyn_h5.load_polylines(f), layout, states)
+            plotter.section_twist(steps, boomdyn_h5.load_frames(f))
+        else:
+            plotter.boom_shapes(layout, states)
         joint_plots(plotter, f)
     special_plots(plotter, run_path)
     for path in plotter.written:

@@ -53,6 +53,7 @@ boomdyn_script_test(postprocess.stick_slip_scene postprocess/test_stick_slip_sce
 boomdyn_script_test(postprocess.snapshots postprocess/test_snapshots.py postprocess)
 boomdyn_script_test(postprocess.paper_comparison_figures postprocess/test_paper_comparison.py postprocess)
 boomdyn_script_test(postprocess.xdmf postprocess/test_xdmf.py postprocess)
+boomdyn_script_test(postprocess.spatial_output postprocess/test_spatial_output.py postprocess)
 boomdyn_script_test(postprocess.study postprocess/test_study.py postprocess)
 boomdyn_script_test(postprocess.calibrate_paper postprocess/test_calibrate_paper.py postprocess)
 boomdyn_script_test(regression.restart regression/test_restart.py "regression;mpi")

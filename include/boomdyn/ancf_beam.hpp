@@ -15,6 +15,7 @@ public:
   void initialCoordinates(double *q) const override;
   CenterlineLocation locate(double s) const override;
   void sample(const CenterlineLocation &loc, double s, const double *values, CenterlineSample &out) const override;
+  int outputSegments() const override { return kOutputSegmentsPerElement * elements_; }
 
   int numElements() const { return elements_; }
   double elementLength() const { return length_ / elements_; }

@@ -53,6 +53,13 @@ public:
   virtual void initialVelocities(double *v) const { (void)v; }
   // 2: a planar body (Body, below); 3: a spatial body (SpatialBody).
   virtual int dimension() const = 0;
+  // For the output (ParaView polylines, docs/output.md): the number of
+  // straight segments the body's axis is drawn with, between equally spaced
+  // material points from s = 0 to the length. A rigid body is one segment
+  // between its ends; a beam samples each element at kOutputSegmentsPerElement
+  // points, which shows its cubic interpolation and not only the nodes.
+  virtual int outputSegments() const { return 1; }
+  static constexpr int kOutputSegmentsPerElement = 4;
 
 protected:
   BodyBase(std::string name, double length, PetscInt first) : name_(std::move(name)), length_(length), first_(first) {}

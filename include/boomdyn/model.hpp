@@ -10,6 +10,7 @@
 #include "boomdyn/post_step_hook.hpp"
 #include "boomdyn/scene.hpp"
 #include "boomdyn/sliding_joint.hpp"
+#include "boomdyn/spatial_body.hpp"
 #include "boomdyn/type_event.hpp"
 #include "boomdyn/work_item.hpp"
 
@@ -25,21 +26,28 @@ public:
   using std::runtime_error::runtime_error;
 };
 
+// A point sensor: a planar scene's on `body`, a spatial scene's on
+// `spatialBody` (the other is null).
 struct Sensor {
   std::string name;
   const Body *body = nullptr;
   double s = 0;
+  const SpatialBody *spatialBody = nullptr;
 };
 
 // Deflection of a material point in a body's moving frame (paper Fig. 9):
 // origin at the body's start (s = 0), x-axis through the contact point of
 // sliding joint `axisJoint` on that body; the output is the point's
 // coordinate normal to the axis (m).
+// In a spatial scene a frame sensor reads the section at s of `spatialBody`
+// instead (body null, no axis joint): its triad, twist, angular velocity
+// and strains (section_reading.hpp).
 struct FrameSensor {
   std::string name;
   const Body *body = nullptr;
   double s = 0;
   std::string axisJoint; // a sliding joint whose track is `body`
+  const SpatialBody *spatialBody = nullptr;
 };
 
 class LuGreFriction;

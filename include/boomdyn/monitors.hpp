@@ -82,6 +82,7 @@ private:
   RopeTensions ropes_;
   DesignNumbers design_; // peak rope tensions, root moments, contact forces (dynamic runs)
   std::vector<SensorReading> readings_;
+  std::vector<SectionReading> sections_;
   std::vector<double> slacks_, multipliers_, deflections_, outputs_; // rank 0 data of the current step
   std::vector<double> tensions_;                                       // kept between steps (no allocation per step)
 };

@@ -9,6 +9,7 @@
 #include "boomdyn/model.hpp"
 #include "boomdyn/petsc_handle.hpp"
 #include "boomdyn/rope_polylines.hpp"
+#include "boomdyn/section_reading.hpp"
 #include "boomdyn/sensors.hpp"
 #include "boomdyn/spatial_body.hpp"
 #include "boomdyn/stick_slip.hpp"
@@ -47,6 +48,9 @@ public:
   PetscErrorCode appendJoints(const std::vector<double> &slacks, const std::vector<double> &multipliers,
                               const std::vector<double> &ropeTensions, const std::vector<double> &frameDeflections,
                               const std::vector<double> &outputs);
+  // The sections of a spatial scene's frame sensors at the same step
+  // (/frames/<name>; rank 0 data, SensorProbe::readSections).
+  PetscErrorCode appendSections(const std::vector<SectionReading> &sections);
   // Full state snapshot; lambda holds unscaled multipliers in its last entries.
   PetscErrorCode appendState(double t, Vec q, Vec v, Vec lambda);
   PetscErrorCode writeModes(double t, const ModalResult &modes);
@@ -102,6 +106,7 @@ private:
   // /sensors/<name>/position and /velocity of every sensor, spelled once
   // (not two new strings per sensor and step).
   std::vector<std::string> sensorPaths_;
+  std::vector<std::string> sectionPaths_; // /frames/<name>/triad, twist, angular_velocity, strains per frame
   // XDMF grids of the first xdmfGrids_ snapshots (booms, ropes), for the
   // sampled sizes in xdmfShape_ (writeXdmf adds the new snapshots' only).
   mutable std::string xdmfBooms_, xdmfRopes_;
@@ -109,6 +114,7 @@ private:
   mutable std::array<std::size_t, 4> xdmfShape_ = {0, 0, 0, 0};
   // writeSampledBooms' arrays, kept between snapshots (no allocations per snapshot).
   std::vector<double> samplePoints_, sampleVelocity_, sampleStrain_, sampleCurvature_, sampleRopePoints_;
+  std::vector<double> sampleTwist_, sampleTorsion_, sampleD2_, sampleD3_; // spatial scenes
   std::vector<int> sampleSegments_, sampleRopeSegments_;
   std::chrono::steady_clock::time_point lastFlush_ = std::chrono::steady_clock::now(), lastXdmf_ = lastFlush_;
 };

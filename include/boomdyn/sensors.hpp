@@ -1,9 +1,11 @@
 // Sensors: position and velocity of named material points, gathered on
-// rank 0 from the distributed state through one small VecScatter.
+// rank 0 from the distributed state through one small VecScatter; in
+// spatial scenes also the sections of frame sensors (section_reading.hpp).
 #pragma once
 
 #include "boomdyn/model.hpp"
 #include "boomdyn/petsc_handle.hpp"
+#include "boomdyn/section_reading.hpp"
 
 #include <petscvec.h>
 
@@ -11,8 +13,11 @@
 
 namespace boomdyn {
 
+// position, velocity: x and y (in a spatial scene the first two of the
+// three components, which position3 and velocity3 hold whole).
 struct SensorReading {
   Vec2 position = Vec2::Zero(), velocity = Vec2::Zero();
+  Vec3 position3 = Vec3::Zero(), velocity3 = Vec3::Zero();
 };
 
 class SensorProbe {
@@ -29,8 +34,10 @@ public:
   // Per frictional joint: s, ds/dt, z, dz/dt, normal force (rank 0): lambda_n,
   // or at a padded joint the pad force f.
   PetscErrorCode readFriction(Vec q, Vec v, Vec lambda, std::vector<double> &values);
-  // Moving-frame deflections of the scene's frame sensors (rank 0).
+  // Moving-frame deflections of the scene's frame sensors (rank 0; planar scenes).
   PetscErrorCode readFrames(Vec q, std::vector<double> &deflections);
+  // The sections of a spatial scene's frame sensors (rank 0; empty in planar scenes).
+  PetscErrorCode readSections(Vec q, Vec v, std::vector<SectionReading> &out);
   // Every output channel's value (Model::outputChannels(), in order) at this
   // state (rank 0; empty elsewhere): multiplier channels from `multipliers`
   // (all unscaled multipliers, as readJoints gives them), state channels
@@ -54,7 +61,11 @@ private:
   bool serial_ = false;                                                 // one rank: pick() reads directly
   std::vector<std::pair<VecScatter, std::vector<PetscInt>>> indices_;   // per scatter (one rank only)
   std::vector<double> qs_, vs_;                                         // readOutputs' work arrays
-  std::vector<CenterlineLocation> locations_;
+  std::vector<CenterlineLocation> locations_;       // planar point sensors
+  std::vector<SpatialLocation> spatialLocations_;   // spatial point sensors
+  std::vector<SpatialLocation> sectionLocations_;   // spatial frame sensors
+  PetscHandle<VecScatter> sectionScatter_;
+  PetscHandle<Vec> sectionValues_;
   PetscHandle<VecScatter> scatter_, slackScatter_, lambdaScatter_, frameScatter_, frictionScatter_, normalScatter_,
       channelScatter_, eventScatter_, padScatter_;
   PetscHandle<Vec> gathered_, slacks_, multipliers_, frameValues_, frictionValues_, normalValues_, channelValues_,

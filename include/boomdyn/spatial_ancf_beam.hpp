@@ -34,9 +34,8 @@ public:
                      SpatialHessian &H) const override;
   Vec3 initialPosition(double s) const override { return origin_ + s * triad_.col(0); }
   Mat3 initialTriad(double) const override { return triad_; }
-  int outputPieces() const override { return elements_; }
-  void axialStrainAndCurvature(const SpatialLocation &loc, const double *values, double &axial,
-                               double &curvature) const override;
+  int outputSegments() const override { return kOutputSegmentsPerElement * elements_; }
+  SpatialStrains sectionStrains(const SpatialLocation &loc, const double *values) const override;
 
   int numElements() const { return elements_; }
   double elementLength() const { return l_; }

@@ -43,6 +43,13 @@ struct SpatialSample {
   std::array<SpatialJacobian, 3> d_q; // d(d_k)/dq
 };
 
+// The strains of a beam's section: Green axial strain (|r'|^2 - 1)/2, the
+// torsion K1 and the curvatures K2, K3 about the section axes d2, d3 (rad
+// per m of reference length; docs/model.md §1.7).
+struct SpatialStrains {
+  double axial = 0, torsion = 0, curvature2 = 0, curvature3 = 0;
+};
+
 // What curvatureTerm differentiates twice.
 enum class SpatialField { Position = 0, Director1 = 1, Director2 = 2, Director3 = 3 };
 
@@ -61,15 +68,12 @@ public:
   // placement in the scene), for derived defaults and body-fixed vectors.
   virtual Vec3 initialPosition(double s) const = 0;
   virtual Mat3 initialTriad(double s) const = 0;
-  // For the output: the number of pieces the body's axis is drawn with (a
-  // beam: its elements; a rigid body: 1), and the Green axial strain and
-  // bending-curvature magnitude at a location (0 for a rigid body).
-  virtual int outputPieces() const { return 1; }
-  virtual void axialStrainAndCurvature(const SpatialLocation &loc, const double *values, double &axial,
-                                       double &curvature) const
+  // The strains of the section at a location (SpatialStrains; all 0 for a
+  // rigid body), for sensors and the output.
+  virtual SpatialStrains sectionStrains(const SpatialLocation &loc, const double *values) const
   {
     (void)loc, (void)values;
-    axial = curvature = 0;
+    return {};
   }
 
 protected:

@@ -13,10 +13,10 @@
 //   angle_drive           -> angle_drive about z, zero [1, 0, 0] (row 0 = the planar row)
 //   point_force           -> point_force [Fx, Fy, 0]
 //   point_mass            -> point_mass (no rotary inertia)
+//   point_sensor          -> point_sensor (x, y of the planar run, and z)
 //
-// Anything else (ANCF beams, sliding joints, ropes, sensors, tracking) is
-// refused with SpatialEmbeddingError naming the component: those come with
-// the spatial beam.
+// Anything else (sliding joints, ropes, frame sensors, tracking) is refused
+// with SpatialEmbeddingError naming the component.
 #pragma once
 
 #include "boomdyn/scene.hpp"

@@ -78,6 +78,25 @@ PetscErrorCode SensorProbe::readFrames(Vec q, std::vector<double> &deflections)
   PetscFunctionReturn(0);
 }
 
+PetscErrorCode SensorProbe::readSections(Vec q, Vec v, std::vector<SectionReading> &out)
+{
+  std::vector<double> qs, vs;
+  PetscFunctionBeginUser;
+  out.clear();
+  if (sectionLocations_.empty()) PetscFunctionReturn(0);
+  PetscCall(pick(sectionScatter_, q, sectionValues_, qs));
+  PetscCall(pick(sectionScatter_, v, sectionValues_, vs));
+  if (rank_ != 0) PetscFunctionReturn(0);
+  std::size_t offset = 0, k = 0;
+  for (const FrameSensor &f : model_.frameSensors()) {
+    if (!f.spatialBody) continue;
+    const SpatialLocation &loc = sectionLocations_[k++];
+    out.push_back(readSection(*f.spatialBody, loc, f.s, qs.data() + offset, vs.data() + offset));
+    offset += loc.count;
+  }
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode SensorProbe::readFriction(Vec q, Vec v, Vec lambda, std::vector<double> &values)
 {
   std::vector<double> qs, vs, ln;
@@ -134,6 +153,12 @@ PetscErrorCode SensorProbe::setUp(Vec layout)
   indices_.clear();
   std::vector<PetscInt> idx;
   for (const Sensor &s : model_.sensors()) {
+    if (s.spatialBody) {
+      spatialLocations_.push_back(s.spatialBody->locate(s.s));
+      const SpatialLocation &loc = spatialLocations_.back();
+      idx.insert(idx.end(), loc.dofs.begin(), loc.dofs.begin() + loc.count);
+      continue;
+    }
     locations_.push_back(s.body->locate(s.s));
     const CenterlineLocation &loc = locations_.back();
     idx.insert(idx.end(), loc.dofs.begin(), loc.dofs.begin() + loc.count);
@@ -146,8 +171,14 @@ PetscErrorCode SensorProbe::setUp(Vec layout)
   PetscCall(makeScatter(layout, slack, slackScatter_, slacks_));
   PetscCall(makeScatter(layout, rows, lambdaScatter_, multipliers_));
   // Frame sensors: the whole body (the axis point moves along it) and the joint's slack coordinate.
-  std::vector<PetscInt> frameIdx;
+  std::vector<PetscInt> frameIdx, sectionIdx;
   for (const FrameSensor &f : model_.frameSensors()) {
+    if (f.spatialBody) { // a spatial scene's: the section at s
+      sectionLocations_.push_back(f.spatialBody->locate(f.s));
+      const SpatialLocation &loc = sectionLocations_.back();
+      sectionIdx.insert(sectionIdx.end(), loc.dofs.begin(), loc.dofs.begin() + loc.count);
+      continue;
+    }
     const Body *body = f.body;
     PetscInt slack = -1;
     for (const auto &j : model_.slidingJoints())
@@ -157,6 +188,7 @@ PetscErrorCode SensorProbe::setUp(Vec layout)
     frameIdx.push_back(slack);
   }
   PetscCall(makeScatter(layout, frameIdx, frameScatter_, frameValues_));
+  PetscCall(makeScatter(layout, sectionIdx, sectionScatter_, sectionValues_));
   std::vector<PetscInt> frictionIdx, normalIdx;
   std::vector<PetscInt> padIdx; // padded joints: track and slider whole, then s (the contact moves)
   for (std::size_t k = 0; k < model_.frictions().size(); ++k) {
@@ -228,11 +260,25 @@ PetscErrorCode SensorProbe::readEventCoordinates(Vec q, Vec v, std::vector<doubl
 PetscErrorCode SensorProbe::read(Vec q, Vec v, std::vector<SensorReading> &out)
 {
   PetscFunctionBeginUser;
-  out.assign(locations_.size(), SensorReading{});
+  out.assign(model_.sensors().size(), SensorReading{});
   std::vector<double> qv[2];
   PetscCall(pick(scatter_, q, gathered_, qv[0]));
   PetscCall(pick(scatter_, v, gathered_, qv[1]));
   if (rank_ != 0) PetscFunctionReturn(0);
+  if (!spatialLocations_.empty()) { // a spatial scene: every sensor is on a spatial body
+    std::size_t offset = 0;
+    for (std::size_t i = 0; i < spatialLocations_.size(); ++i) {
+      const SpatialLocation &loc = spatialLocations_[i];
+      const Sensor &s = model_.sensors()[i];
+      SpatialSample p;
+      s.spatialBody->sample(loc, s.s, qv[0].data() + offset, p);
+      out[i].position3 = p.r;
+      out[i].velocity3 = p.r_q.leftCols(loc.count) * Eigen::Map<const Eigen::VectorXd>(qv[1].data() + offset, loc.count);
+      out[i].position = out[i].position3.head<2>(), out[i].velocity = out[i].velocity3.head<2>();
+      offset += loc.count;
+    }
+    PetscFunctionReturn(0);
+  }
   std::size_t offset = 0;
   for (std::size_t i = 0; i < locations_.size(); ++i) {
     const CenterlineLocation &loc = locations_[i];

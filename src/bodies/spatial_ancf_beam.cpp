@@ -82,12 +82,10 @@ SpatialLocation SpatialAncfBeam::locate(double s) const
   return loc;
 }
 
-void SpatialAncfBeam::axialStrainAndCurvature(const SpatialLocation &loc, const double *values, double &axial,
-                                              double &curvature) const
+SpatialStrains SpatialAncfBeam::sectionStrains(const SpatialLocation &loc, const double *values) const
 {
-  const spatial_beam::Strains e =
-      spatial_beam::strainsAt(geometry(loc.element), Eigen::Map<const spatial_beam::Vec14>(values), loc.xi);
-  axial = e.axial, curvature = std::hypot(e.curvature2, e.curvature3);
+  const sb::Strains e = sb::strainsAt(geometry(loc.element), Eigen::Map<const sb::Vec14>(values), loc.xi);
+  return {e.axial, e.torsion, e.curvature2, e.curvature3};
 }
 
 void SpatialAncfBeam::sample(const SpatialLocation &loc, double s, const double *values, SpatialSample &out) const

@@ -5,11 +5,11 @@
 #include "boomdyn/gather.hpp"
 
 #include "boomdyn/log_events.hpp"
-#include "boomdyn/ancf_beam.hpp"
 #include "xdmf_text.hpp"
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <chrono>
 #include <ctime>
 #include <cstdio>
@@ -112,6 +112,7 @@ PetscErrorCode ResultsWriter::open(const std::string &path, bool overwrite, cons
       file_->writeString("/scene/text", sc.text);
       file_->setAttribute("/layout", "nq", static_cast<long long>(model_.numCoordinates()));
       file_->setAttribute("/layout", "nlambda", static_cast<long long>(model_.numMultipliers()));
+      file_->setAttribute("/layout", "dimension", static_cast<long long>(model_.scene().dimension));
       std::vector<std::string> names, cnames;
       std::vector<int> first, count, cfirst, crows;
       for (const auto &b : model_.bodies()) {
@@ -151,7 +152,8 @@ PetscErrorCode ResultsWriter::open(const std::string &path, bool overwrite, cons
         file_->writeStrings("/layout/type_event_kinds", eventKinds(model_));
       }
       std::vector<std::string> frames;
-      for (const FrameSensor &f : model_.frameSensors()) frames.push_back(f.name);
+      for (const FrameSensor &f : model_.frameSensors())
+        if (f.body) frames.push_back(f.name); // the columns of /steps/frame_deflection (planar scenes)
       if (!frames.empty()) file_->writeStrings("/layout/frame_names", frames);
       if (!cnames.empty()) {
         file_->writeStrings("/layout/constraint_names", cnames);
@@ -229,6 +231,31 @@ PetscErrorCode ResultsWriter::appendJoints(const std::vector<double> &slacks, co
   PetscFunctionReturn(0);
 }
 
+PetscErrorCode ResultsWriter::appendSections(const std::vector<SectionReading> &sections)
+{
+  PetscFunctionBeginUser;
+  PetscCall(onRankZero(comm_, rank_, [&] {
+    if (sectionPaths_.size() != 4 * sections.size()) {
+      sectionPaths_.clear();
+      for (const FrameSensor &f : model_.frameSensors())
+        if (f.spatialBody)
+          for (const char *part : {"/triad", "/twist", "/angular_velocity", "/strains"})
+            sectionPaths_.push_back("/frames/" + f.name + part);
+    }
+    for (std::size_t i = 0; i < sections.size(); ++i) {
+      const SectionReading &r = sections[i];
+      // Row-major: entry 3 i + j is component i of director d_(j+1).
+      const Eigen::Matrix<double, 3, 3, Eigen::RowMajor> triad = r.triad;
+      const double strains[4] = {r.strains.axial, r.strains.torsion, r.strains.curvature2, r.strains.curvature3};
+      file_->appendRow(sectionPaths_[4 * i], triad.data(), 9);
+      file_->appendScalar(sectionPaths_[4 * i + 1], r.twist);
+      file_->appendRow(sectionPaths_[4 * i + 2], r.angularVelocity.data(), 3);
+      file_->appendRow(sectionPaths_[4 * i + 3], strains, 4);
+    }
+  }));
+  PetscFunctionReturn(0);
+}
+
 void ResultsWriter::appendStepRow(double t, double dt, PetscInt iterations, double violation, const EnergyParts &e,
                                   const std::vector<SensorReading> &sensors)
 {
@@ -246,10 +273,16 @@ void ResultsWriter::appendStepRow(double t, double dt, PetscInt iterations, doub
       sensorPaths_.push_back(base + "/velocity");
     }
   }
-  for (std::size_t i = 0; i < sensors.size(); ++i) {
-    file_->appendRow(sensorPaths_[2 * i], sensors[i].position.data(), 2);
-    file_->appendRow(sensorPaths_[2 * i + 1], sensors[i].velocity.data(), 2);
-  }
+  if (model_.scene().dimension == 3)
+    for (std::size_t i = 0; i < sensors.size(); ++i) {
+      file_->appendRow(sensorPaths_[2 * i], sensors[i].position3.data(), 3);
+      file_->appendRow(sensorPaths_[2 * i + 1], sensors[i].velocity3.data(), 3);
+    }
+  else
+    for (std::size_t i = 0; i < sensors.size(); ++i) {
+      file_->appendRow(sensorPaths_[2 * i], sensors[i].position.data(), 2);
+      file_->appendRow(sensorPaths_[2 * i + 1], sensors[i].velocity.data(), 2);
+    }
   // Flush every couple of seconds so that a crash keeps the rows written so far.
   const auto now = std::chrono::steady_clock::now();
   if (now - lastFlush_ > std::chrono::seconds(2)) {
@@ -308,15 +341,14 @@ void ResultsWriter::writeSampledBooms(double t, const std::vector<double> &q, co
                       &curvature = sampleCurvature_;
   std::vector<int> &segments = sampleSegments_;
   points.clear(), velocity.clear(), strain.clear(), curvature.clear(), segments.clear();
+  sampleTwist_.clear(), sampleTorsion_.clear(), sampleD2_.clear(), sampleD3_.clear();
   for (const auto &base : model_.bodies()) {
     if (base->dimension() == 3) {
       writeSpatialBody(static_cast<const SpatialBody &>(*base), q, v);
       continue;
     }
     const Body *body = static_cast<const Body *>(base.get());
-    const auto *beam = dynamic_cast<const AncfBeam *>(body);
-    const int elements = beam ? beam->numElements() : 1, perElement = beam ? kSamplesPerElement : 1;
-    const int n = elements * perElement + 1;
+    const int n = body->outputSegments() + 1;
     const int first = static_cast<int>(points.size() / 3);
     for (int k = 0; k < n; ++k) {
       const double s = body->length() * k / (n - 1);
@@ -340,6 +372,11 @@ void ResultsWriter::writeSampledBooms(double t, const std::vector<double> &q, co
   std::vector<Hdf5File::NamedArray> arrays = {
     {"points", &points, {np, 3}}, {"velocity", &velocity, {np, 3}}, {"axial_strain", &strain, {np}},
     {"curvature", &curvature, {np}}};
+  if (model_.scene().dimension == 3) // the sections: twist, torsion and the directions d2, d3
+    arrays.insert(arrays.end(), {{"twist", &sampleTwist_, {np}},
+                                 {"torsion", &sampleTorsion_, {np}},
+                                 {"d2", &sampleD2_, {np, 3}},
+                                 {"d3", &sampleD3_, {np, 3}}});
   // The ropes as polylines through their pulleys (rope_polylines.hpp).
   std::vector<double> &ropePoints = sampleRopePoints_;
   std::vector<int> &ropeSegments = sampleRopeSegments_;
@@ -354,27 +391,25 @@ void ResultsWriter::writeSampledBooms(double t, const std::vector<double> &q, co
   sampledPoints_ = np, sampledSegments_ = ns;
 }
 
-// A spatial body sampled like a beam: 3-D points along its axis, their
-// velocities, and the axial strain |r'| - 1 and curvature left at 0 (rigid
-// bodies; spatial beams sampled as planar ones, with their Green axial strain
-// and the magnitude of their bending curvature).
+// A spatial body sampled along its axis (outputSegments + 1 points): the
+// points, their velocities and the section there (section_reading.hpp):
+// axial strain, bending-curvature magnitude, torsion, twist, d2 and d3.
 void ResultsWriter::writeSpatialBody(const SpatialBody &body, const std::vector<double> &q, const std::vector<double> &v)
 {
-  const int pieces = body.outputPieces();
-  const int n = pieces > 1 ? pieces * kSamplesPerElement + 1 : 2,
-            first = static_cast<int>(samplePoints_.size() / 3);
+  const int n = body.outputSegments() + 1, first = static_cast<int>(samplePoints_.size() / 3);
   for (int k = 0; k < n; ++k) {
     const double s = body.length() * k / (n - 1);
     const SpatialLocation loc = body.locate(s);
     double vals[kSpatialMaxDofs], vels[kSpatialMaxDofs];
     for (int i = 0; i < loc.count; ++i) vals[i] = q[loc.dofs[i]], vels[i] = v[loc.dofs[i]];
-    SpatialSample p;
-    body.sample(loc, s, vals, p);
-    const Vec3 vel = p.r_q.leftCols(loc.count) * Eigen::Map<const Eigen::VectorXd>(vels, loc.count);
-    for (int i = 0; i < 3; ++i) samplePoints_.push_back(p.r[i]), sampleVelocity_.push_back(vel[i]);
-    double axial, curvature;
-    body.axialStrainAndCurvature(loc, vals, axial, curvature);
-    sampleStrain_.push_back(axial), sampleCurvature_.push_back(curvature);
+    const SectionReading r = readSection(body, loc, s, vals, vels);
+    for (int i = 0; i < 3; ++i) {
+      samplePoints_.push_back(r.position[i]), sampleVelocity_.push_back(r.velocity[i]);
+      sampleD2_.push_back(r.triad(i, 1)), sampleD3_.push_back(r.triad(i, 2));
+    }
+    sampleStrain_.push_back(r.strains.axial);
+    sampleCurvature_.push_back(std::hypot(r.strains.curvature2, r.strains.curvature3));
+    sampleTorsion_.push_back(r.strains.torsion), sampleTwist_.push_back(r.twist);
     if (k > 0) sampleSegments_.push_back(first + k - 1), sampleSegments_.push_back(first + k);
   }
 }
@@ -385,6 +420,7 @@ void ResultsWriter::writeXdmf() const
   const std::string xmf = (path_.size() > 3 && path_.compare(path_.size() - 3, 3, ".h5") == 0 ? path_.substr(0, path_.size() - 3) : path_) + ".xmf";
   const std::string h5 = path_.substr(path_.find_last_of('/') == std::string::npos ? 0 : path_.find_last_of('/') + 1);
   const std::string np = std::to_string(sampledPoints_);
+  const bool spatial = model_.scene().dimension == 3;
   // The grids of the snapshots described before are kept: only the new ones
   // are formed (the whole text at every rewrite grew with the snapshots).
   const std::array<std::size_t, 4> shape = {sampledPoints_, sampledSegments_, ropePoints_, ropeSegments_};
@@ -394,13 +430,12 @@ void ResultsWriter::writeXdmf() const
     std::string &text = xdmfBooms_;
     text += xdmf::polylineGridBegin("booms", snapshotTimes_[k], sampledSegments_, sampledPoints_,
                                     h5 + ":/paraview/segments", g + "/points");
-    for (const char *field : {"axial_strain", "curvature"})
-      text += std::string("    <Attribute Name=\"") + field +
-              "\" AttributeType=\"Scalar\" Center=\"Node\">\n     <DataItem Dimensions=\"" + np +
-              "\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">" + g + "/" + field + "</DataItem>\n    </Attribute>\n";
-    text += "    <Attribute Name=\"velocity\" AttributeType=\"Vector\" Center=\"Node\">\n     <DataItem Dimensions=\"" + np +
-            " 3\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">" + g + "/velocity</DataItem>\n    </Attribute>\n" +
-            "   </Grid>\n";
+    for (const char *field : {"axial_strain", "curvature"}) text += xdmf::nodeAttribute(field, false, np, g + "/" + field);
+    text += xdmf::nodeAttribute("velocity", true, np, g + "/velocity");
+    if (spatial) // docs/output.md: the section's twist and torsion, and its directions d2 and d3
+      for (const char *field : {"twist", "torsion", "d2", "d3"})
+        text += xdmf::nodeAttribute(field, field[0] == 'd', np, g + "/" + field);
+    text += "   </Grid>\n";
     if (ropeSegments_ > 0) xdmfRopes_ += ropesXdmfGrid(h5, k, snapshotTimes_[k], ropePoints_, ropeSegments_);
   }
   xdmfGrids_ = snapshotTimes_.size();

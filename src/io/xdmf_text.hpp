@@ -39,6 +39,16 @@ inline std::string polylineGridBegin(const std::string &name, double time, std::
          " 3\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">" + pointsRef + "</DataItem>\n    </Geometry>\n";
 }
 
+// A field at the nodes of a grid: a scalar (points values) or a 3-vector
+// (points x 3) at dataRef ("file.h5:/path").
+inline std::string nodeAttribute(const std::string &name, bool vector, const std::string &points,
+                                 const std::string &dataRef)
+{
+  return "    <Attribute Name=\"" + name + "\" AttributeType=\"" + (vector ? "Vector" : "Scalar") +
+         "\" Center=\"Node\">\n     <DataItem Dimensions=\"" + points + (vector ? " 3" : "") +
+         "\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">" + dataRef + "</DataItem>\n    </Attribute>\n";
+}
+
 // Writes text to path through a temporary file, so that a failed write (a
 // full disk) keeps the previous file instead of leaving an empty one.
 inline void writeFileReplacing(const std::string &path, const std::string &text)

@@ -37,7 +37,9 @@
   X(spatialPointForceType) \
   X(spatialPointMomentType) \
   X(spatialPointMassType) \
-  X(spatialAncfBeamType)
+  X(spatialAncfBeamType) \
+  X(spatialPointSensorType) \
+  X(spatialFrameSensorType)
 
 namespace boomdyn {
 

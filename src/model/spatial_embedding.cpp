@@ -13,7 +13,7 @@ namespace {
   throw SpatialEmbeddingError(mark.file + ":" + std::to_string(mark.line) + ": key '" + mark.key + "': " + what +
                               " cannot run as a spatial model yet (-boom_spatial takes rigid bodies, ANCF beams, pins, clamps, "
                               "angle drives, sliding joints on beams without friction or pad, extraction drives, "
-                              "point forces and point masses)");
+                              "point forces, point masses and point sensors)");
 }
 
 Vec3d inPlane(const Vec2d &v) { return {v[0], v[1], 0.0}; }
@@ -47,8 +47,8 @@ Scene spatialEmbedding(const Scene &planar)
   s.gravity3 = inPlane(planar.gravity);
   s.constraints.clear(), s.forces.clear(), s.masses.clear();
   if (!planar.springs.empty()) refuse(planar.springs[0].mark, "spring '" + planar.springs[0].name + "'");
-  if (!planar.output.sensors.empty() || !planar.output.frames.empty())
-    refuse(planar.output.sensors.empty() ? planar.output.frames[0].mark : planar.output.sensors[0].mark, "a sensor");
+  // Point sensors carry over as they are (body and at); frame sensors do not.
+  if (!planar.output.frames.empty()) refuse(planar.output.frames[0].mark, "a frame sensor");
   // Modal analysis and tracking carry over: the in-plane modes are the
   // planar ones, the out-of-plane modes come in addition (docs/model.md §5).
   for (BodySpec &b : s.bodies) {

@@ -30,6 +30,8 @@ PetscErrorCode ResultsOutput::writeStepRow(const RunState &s)
   PetscFunctionBeginUser;
   PetscCall(sim_.sensors().read(s.q, s.v, readings_));
   PetscCall(writer_.appendStep(s.t, s.h, s.iterations, s.violation, s.energy, readings_));
+  PetscCall(sim_.sensors().readSections(s.q, s.v, sections_));
+  if (!sections_.empty()) PetscCall(writer_.appendSections(sections_));
   PetscFunctionReturn(0);
 }
 

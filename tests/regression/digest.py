@@ -22,7 +22,8 @@ say what a run computed (docs/verification.md, "Regression digests"):
   energy.*     the final energy row and the energy balance of /summary
   sample.*     the step times at 1/5, 2/5, ..., 5/5 of the run and, at those
                steps, every sensor (position, velocity), rope tension, slack
-               coordinate, friction force, frame deflection and |lambda|
+               coordinate, friction force, frame deflection, section twist
+               (spatial frame sensors) and |lambda|
   modal.*      every computed natural frequency
   tracking.*   the tracked frequency: rows, first, last, min, max
   events.*     the stick/slip events: count, and time, joint and kind of the
@@ -198,8 +199,13 @@ def extract(path):
             for name in f["sensors"]:
                 g = f["sensors"][name]
                 for q in ("position", "velocity"):
-                    if q in g:
-                        series.append((f"sensor.{name}.{q}", g[q][()], ("x", "y")))
+                    if q in g:  # x, y; spatial scenes also z
+                        data = g[q][()]
+                        series.append((f"sensor.{name}.{q}", data, ("x", "y", "z")[:data.shape[1]]))
+        if "frames" in f:  # the sections of a spatial scene's frame sensors
+            for name in f["frames"]:
+                if "twist" in f["frames"][name]:
+                    series.append((f"section.{name}.twist", f["frames"][name]["twist"][()][:, None], None))
         per_joint = [
             ("rope_tension", "/layout/rope_names", "rope", "tension"),
             ("slack", "/layout/sliding_joint_names", "slack", "s"),
