@@ -1,4 +1,6 @@
+// The pad map's schema, shared by the planar and the spatial sliding joint types.
 #include "boomdyn/pad_schema.hpp"
+#include "boomdyn/physics_type.hpp"
 
 #include <map>
 

@@ -48,7 +48,7 @@ bool SpatialSlidingJoint::relocate(double s)
 
 void SpatialSlidingJoint::evaluate(double, const double *q, const double *v, const double *w, ConstraintEval &out) const
 {
-  constexpr int nt = sb::kCoordinates, ny = sb::kSlackVariables;
+  constexpr int nt = sb::kCoordinates;
   const int nb = sliderLoc_.count, n = nt + nb + 1, is = n - 1, m = numRows();
   const double *qb = q + nt;
   const double s = q[is];
