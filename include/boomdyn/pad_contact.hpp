@@ -1,10 +1,11 @@
 // Compliant slide pad with clearance at a sliding joint (docs/model.md §2.1,
-// pad variant, and §7): the joint keeps its tangential row C_d (which defines
-// the slack coordinate s) as a constraint; across the track the slider point
-// moves freely within the clearance +-g and meets a one-sided elastic pad on
-// either side. With d the signed normal gap (SlidingJoint::normalGap, d > 0
-// on the left of the track's direction) the force on the slider along the
-// track's normal n is
+// pad variant, §7 and §9.5): the joint keeps its tangential row (which
+// defines the slack coordinate s) as a constraint; across the track the
+// slider point moves freely within the clearance +-g and meets a one-sided
+// elastic pad on either side. With d the signed gap (PadGap::normalGap: the
+// planar joint's normal gap, d > 0 on the left of the track's direction, or
+// a spatial joint's gap along the section direction d2 or d3) the force on
+// the slider along that direction n is
 //     f = -k (d - g) - c ddot   for d >  g   (side +1)
 //     f = -k (d + g) - c ddot   for d < -g   (side -1)
 //     f = 0                     otherwise     (side  0, lift-off)
@@ -15,7 +16,7 @@
 // pad that separates fast may pull briefly (linear Kelvin-Voigt pad).
 #pragma once
 
-#include "boomdyn/sliding_joint.hpp"
+#include "boomdyn/pad_gap.hpp"
 #include "boomdyn/work_item.hpp"
 
 #include <memory>
@@ -39,8 +40,8 @@ struct PadState {
 class PadContact : public WorkItem {
 public:
   ModeEnergyKind modeEnergyKind() const override { return ModeEnergyKind::Contact; } // mode labels
-  PadContact(std::shared_ptr<const SlidingJoint> joint, const PadSpec &spec);
-  std::string name() const override { return joint_->name() + ".pad"; }
+  PadContact(std::shared_ptr<const PadGap> gap, const PadSpec &spec);
+  std::string name() const override { return joint_->padName(); }
   void coordinates(std::vector<PetscInt> &dofs) const override { joint_->coordinates(dofs); }
   void evaluate(const AssemblyContext &ctx, const ItemValues &in, double *residual, double *J) const override;
   // The gap and its derivatives once for the passes at the same q.
@@ -51,7 +52,6 @@ public:
   PadState state(const double *q, const double *v) const;
   // The pad force f and its derivatives f_q, f_v over coordinates().
   void force(const double *q, const double *v, double &f, Eigen::VectorXd &fq, Eigen::VectorXd &fv) const;
-  const SlidingJoint &joint() const { return *joint_; }
   const PadSpec &spec() const { return spec_; }
   // The side of contact; without clearance the pad is always in contact (bilateral).
   static int sideOf(double d, double clearance)
@@ -66,7 +66,7 @@ private:
   // evaluate() after the gap d, d_q (dq_) and, with J, d_qq (dqq_) at in.q.
   void evaluateAtGap(const AssemblyContext &ctx, const ItemValues &in, double d, double *residual, double *J) const;
 
-  std::shared_ptr<const SlidingJoint> joint_;
+  std::shared_ptr<const PadGap> joint_; // the gap d
   PadSpec spec_;
   // d_q and d_qq of the last evaluation, kept so that their arrays are not
   // allocated per residual.

@@ -23,10 +23,11 @@
 
 #include "boomdyn/body.hpp"
 #include "boomdyn/constraint.hpp"
+#include "boomdyn/pad_gap.hpp"
 
 namespace boomdyn {
 
-class SlidingJoint : public Constraint {
+class SlidingJoint : public Constraint, public PadGap {
 public:
   SlidingJoint(std::string name, const Body &track, const Body &slider, double sliderPoint, PetscInt slackIndex,
                double s0, bool normalRow = true);
@@ -34,16 +35,17 @@ public:
   int numRows() const override { return normalRow_ ? 2 : 1; }
   // False when a pad takes the normal direction (only row d is a constraint).
   bool hasNormalRow() const { return normalRow_; }
+  std::string padName() const override { return name_ + ".pad"; }
   void coordinates(std::vector<PetscInt> &dofs) const override;
   void evaluate(double t, const double *q, const double *v, const double *w, ConstraintEval &out) const override;
   bool dependsOnTime() const override { return false; }
   // The signed normal gap d = j(s) . (r_j(x_P) - r_i(s)) = -C_n of the slider
   // point (positive on the left of the track's direction), its gradient d_q
   // and Hessian d_qq over coordinates() (row n of evaluate() with w = (0, 1)).
-  void normalGap(const double *q, double &d, Eigen::VectorXd &dq, Eigen::MatrixXd &dqq) const;
+  void normalGap(const double *q, double &d, Eigen::VectorXd &dq, Eigen::MatrixXd &dqq) const override;
   // The same d and d_q without the Hessian (residuals, outputs, energies:
   // the Hessian's curvature terms are most of the cost).
-  void normalGap(const double *q, double &d, Eigen::VectorXd &dq) const;
+  void normalGap(const double *q, double &d, Eigen::VectorXd &dq) const override;
 
   PetscInt slackIndex() const { return slack_; }
   const Body &track() const { return *track_; }

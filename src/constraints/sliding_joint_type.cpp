@@ -9,6 +9,7 @@
 #include "boomdyn/lugre_friction.hpp"
 #include "boomdyn/model_builder.hpp"
 #include "boomdyn/pad_contact.hpp"
+#include "boomdyn/pad_schema.hpp"
 #include "boomdyn/physics_type.hpp"
 #include "boomdyn/slack_coordinate.hpp"
 #include "boomdyn/sliding_joint.hpp"
@@ -46,30 +47,6 @@ const TypeSchema &frictionSchema()
             "relative speed below which the output counts the joint as sticking")
             .positive()
             .derived("v_s / 10"),
-    };
-    return s;
-  }();
-  return schema;
-}
-
-// Compliant pad with clearance (docs/model.md §2.1, pad variant).
-const TypeSchema &padSchema()
-{
-  static const TypeSchema schema = [] {
-    TypeSchema s;
-    s.section = "constraints";
-    s.type = "pad";
-    s.summary = "Compliant slide pad with clearance at a sliding joint (the map under a sliding_joint's `pad` key): "
-                "the slider point moves freely across the track within +-clearance and meets an elastic pad on "
-                "either side.";
-    s.keys = {
-        key("stiffness", ValueKind::Number, "N/m", Need::Required, "pad stiffness k_pad").positive(),
-        key("clearance", ValueKind::Number, "m", Need::Optional, "free play g on either side of the track")
-            .nonNegative()
-            .byDefault(0.0),
-        key("damping", ValueKind::Number, "N s/m", Need::Optional, "pad damping c_pad while in contact")
-            .nonNegative()
-            .byDefault(0.0),
     };
     return s;
   }();
@@ -315,7 +292,7 @@ void buildSlidingJoint(const ComponentSpec &spec, ModelBuilder &b)
   if (padded) {
     const ComponentSpec &p = spec.map("pad");
     pad = b.addPad(std::make_unique<PadContact>(
-        joint, PadSpec{p.number("stiffness"), p.number("clearance"), p.number("damping")}));
+        joint, padSpecOf(p)));
     addPadOutputs(joint, pad, b);
   }
   addJointResultants(joint, item, pad, b);

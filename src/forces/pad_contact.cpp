@@ -5,8 +5,8 @@
 
 namespace boomdyn {
 
-PadContact::PadContact(std::shared_ptr<const SlidingJoint> joint, const PadSpec &spec)
-  : joint_(std::move(joint)), spec_(spec)
+PadContact::PadContact(std::shared_ptr<const PadGap> gap, const PadSpec &spec)
+  : joint_(std::move(gap)), spec_(spec)
 {
 }
 

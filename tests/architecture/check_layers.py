@@ -24,7 +24,7 @@ CORE = {"time_function", "scene", "work_item", "component_spec", "type_schema", 
         "gather", "lanes", "log_events", "petsc_handle", "body", "spatial_body", "constraint", "vec2", "version"}
 # Header-only concepts, by the layer they belong to.
 HEADER_LAYERS = {
-    "schema": "core", "slack_drive": "physics", "physics_type": "model", "model_builder": "model",
+    "schema": "core", "slack_drive": "physics", "pad_gap": "physics", "physics_type": "model", "model_builder": "model",
     "post_step_hook": "model", "state_archive": "solvers", "monitor": "simulation", "monitors": "simulation",
     "schedule": "simulation",
 }

@@ -36,11 +36,17 @@ std::string number(double x)
 
 // The value of output channel (group sliding_joint, quantity) from the
 // multipliers (full layout of x, unscaled) or the state.
-double channel(const Model &model, const std::string &quantity, const std::vector<double> &lambda)
+// A padded direction's force is a state channel (at q, v = 0).
+double channel(const Model &model, const std::string &quantity, const std::vector<double> &lambda,
+               const std::vector<double> &q = {})
 {
-  for (const OutputChannel &c : model.outputChannels())
-    if (c.group == "sliding_joint" && c.quantity == quantity && !c.fromState())
-      return c.factor * lambda.at(static_cast<std::size_t>(model.numCoordinates() + c.index));
+  for (const OutputChannel &c : model.outputChannels()) {
+    if (c.group != "sliding_joint" || c.quantity != quantity) continue;
+    if (!c.fromState()) return c.factor * lambda.at(static_cast<std::size_t>(model.numCoordinates() + c.index));
+    std::vector<double> qw, vw(c.watched.size(), 0.0);
+    for (PetscInt i : c.watched) qw.push_back(q.at(static_cast<std::size_t>(i)));
+    return c.evaluate(0.0, qw.data(), vw.data());
+  }
   ADD_FAILURE() << "no output channel sliding_joint/" << quantity;
   return std::nan("");
 }
@@ -55,13 +61,13 @@ struct StaticSleeve {
 // a rigid sleeve whose joint point sits at s = 0.5 (a node), rotation
 // locked, its contact coordinate held by an extraction drive (the sliding
 // direction has no stiffness in statics). Loads on the sleeve at its joint point.
-StaticSleeve solveSleeve(const std::string &loads)
+StaticSleeve solveSleeve(const std::string &loads, const std::string &jointKeys = "", const std::string &gravity = "0")
 {
   const std::string text = R"(
 name: sleeve-statics
 dimension: 3
 analysis: dynamic
-gravity: [0, 0, 0]
+gravity: [0, 0, )" + gravity + R"(]
 bodies:
   - {name: track, type: ancf_beam, length: 1.0, elements: 4,
      section: {EA: 1.0e4, EI_y: 1.0, EI_z: 2.0, GJ: 0.5, rhoA: 1.0, rho_Ip: 0.01}}
@@ -69,7 +75,7 @@ bodies:
 constraints:
   - {type: clamp, name: root, body: track, at: start}
   - {type: clamp, name: far, body: track, at: end}
-  - {type: sliding_joint, name: sleeve, body: sleeve, at: 0.1, track: track, rotation: locked}
+  - {type: sliding_joint, name: sleeve, body: sleeve, at: 0.1, track: track, rotation: locked)" + jointKeys + R"(}
   - {type: extraction_drive, name: hold, joint: sleeve, displacement: 0}
 loads:
 )" + loads + "dynamic: {t_end: 0.1, dt: 0.01}\n";
@@ -89,8 +95,8 @@ loads:
   out.q = gatherAll(x);
   out.lambda = gatherAll(statics.multipliers());
   out.force1 = channel(model, "force_tangential", out.lambda);
-  out.force2 = channel(model, "force_2", out.lambda);
-  out.force3 = channel(model, "force_3", out.lambda);
+  out.force2 = channel(model, "force_2", out.lambda, out.q);
+  out.force3 = channel(model, "force_3", out.lambda, out.q);
   out.moment2 = channel(model, "moment_2", out.lambda);
   out.moment3 = channel(model, "moment_3", out.lambda);
   out.torque = channel(model, "torque", out.lambda);
@@ -156,6 +162,51 @@ TEST(SpatialSlidingJointStatics, SleeveReactionsMatchHandStatics)
     for (double zero : {s.force1, s.force2, s.force3}) EXPECT_NEAR(zero, 0.0, 1e-10 * M / L);
     for (double zero : {other, s.torque}) EXPECT_NEAR(zero, 0.0, 1e-10 * M);
     EXPECT_GT(std::abs(s.q[7 * 2 + 3 + (axis == 1 ? 2 : 1)]), 1e-3); // the section did turn
+  }
+}
+
+// The same sleeve (1 kg, centre of mass at its joint point) on pads instead
+// of the rigid lateral rows: pads along d2 = y (stiffness 2e4 N/m,
+// clearance 1 mm) and, with their own values, along d3 = z (1e4 N/m, 2 mm).
+// Under gravity -z the sleeve rests on the lower d3 pad: it sits
+// m g / k3 + c3 below the track's axis at s (whatever the beam's own
+// deflection), the d3 pad force is m g and the d2 pads are free (the sleeve
+// stays in their clearance, force 0). A lateral force F along y (no
+// gravity) presses it onto the d2 pad: offset F / k2 + c2 along y, pad force
+// -F. The loads act on the axis of a symmetric clamped beam at mid-span, so
+// the track's section there keeps d2 = y, d3 = z and the forces are exactly
+// along the pads.
+TEST(SpatialSlidingJointStatics, SleeveOnPadsDeflectsByLoadOverStiffnessPlusClearance)
+{
+  const double m = 1.0, g = 9.81, k2 = 2.0e4, c2 = 1.0e-3, k3 = 1.0e4, c3 = 2.0e-3, F = 3.0;
+  const std::string pads = ", pad: {stiffness: 2.0e4, clearance: 1.0e-3, damping: 5}, "
+                           "pad_3: {stiffness: 1.0e4, clearance: 2.0e-3}";
+  // Track node 2 (s = 0.5): coordinates 14..16; sleeve position 35..37 (its
+  // joint point is its origin + 0.1 along x; it does not turn).
+  {
+    const StaticSleeve s = solveSleeve("  - {type: point_force, body: sleeve, at: 0.1, force: [0, 0, 0]}\n", pads, "-9.81");
+    ASSERT_TRUE(s.converged);
+    const double drop = s.q[16] - s.q[37], exact = m * g / k3 + c3, side = s.q[36] - s.q[15];
+    std::printf("gravity on pads: drop %.15g (exact %.15g), force_3 %.15g, force_2 %.3e, offset y %.3e, beam %.3e\n",
+                drop, exact, s.force3, s.force2, side, s.q[16]);
+    EXPECT_NEAR(drop, exact, 1e-10 * exact);
+    EXPECT_NEAR(s.force3, m * g, 1e-10 * m * g);
+    EXPECT_EQ(s.force2, 0.0);
+    EXPECT_LT(std::abs(side), c2);
+    EXPECT_LT(s.q[16], -1e-3); // the beam did bend: the drop is relative to it
+  }
+  {
+    const StaticSleeve s =
+        solveSleeve("  - {type: point_force, body: sleeve, at: 0.1, force: [0, " + number(F) + ", 0]}\n", pads);
+    ASSERT_TRUE(s.converged);
+    const double offset = s.q[36] - s.q[15], exact = F / k2 + c2;
+    std::printf("lateral on pads: offset %.15g (exact %.15g), force_2 %.15g, force_3 %.3e, torque %.3e\n", offset,
+                exact, s.force2, s.force3, s.torque);
+    EXPECT_NEAR(offset, exact, 1e-10 * exact);
+    EXPECT_NEAR(s.force2, -F, 1e-10 * F);
+    EXPECT_EQ(s.force3, 0.0);
+    EXPECT_NEAR(s.force1, 0.0, 1e-10 * F);
+    EXPECT_GT(s.q[15], 1e-3);
   }
 }
 
