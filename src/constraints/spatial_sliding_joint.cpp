@@ -146,7 +146,7 @@ void SpatialSlidingJoint::lateralGap(int k, const double *q, double &g, Eigen::V
   const int nb = sliderLoc_.count, n = nt + nb + 1, is = n - 1;
   const double *qb = q + nt;
   const sb::SlackFrame F =
-      sb::slackFrame(track_->geometry(), Eigen::Map<const sb::Vec14>(q), (q[is] - trackLoc_.begin) / track_->elementLength());
+      sb::slackFrame(track_->geometry(trackLoc_.element), Eigen::Map<const sb::Vec14>(q), (q[is] - trackLoc_.begin) / track_->elementLength());
   SpatialSample pb;
   slider_->sample(sliderLoc_, xP_, qb, pb);
   RowParts p;

@@ -73,7 +73,7 @@ TEST(ModeEnergy, SpatialBeamSplitsByStrainAgainstSingleStiffnessTangents)
       only.*(p.keep) = sec.*(p.keep);
       sb::Vec14 f;
       sb::Mat14 K;
-      sb::internalForce(only, beam.geometry(), q, f, &K);
+      sb::internalForce(only, beam.geometry(0), q, f, &K);
       const double expected = half(K, s);
       EXPECT_NEAR(kind(e, p.kind), expected, 1e-12 * std::abs(expected)) << modeEnergyKindName((int)p.kind);
       whole += expected;
@@ -99,7 +99,7 @@ TEST(ModeEnergy, SpatialBeamPartsSumToTheWholeTangentWhenStrained)
     const ModeEnergy e = spatialSplit(item, q, s);
     sb::Vec14 f;
     sb::Mat14 K;
-    sb::internalForce(sec, beam.geometry(), q, f, &K);
+    sb::internalForce(sec, beam.geometry(0), q, f, &K);
     double sum = 0;
     for (double x : e.kind) sum += x;
     const double whole = half(K, s);
