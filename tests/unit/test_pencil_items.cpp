@@ -11,6 +11,7 @@
 #include "boomdyn/beam_element_item.hpp"
 #include "boomdyn/elastic_rope.hpp"
 #include "boomdyn/pad_contact.hpp"
+#include "boomdyn/sliding_joint.hpp"
 #include "rope_test_bodies.hpp"
 
 #include <gtest/gtest.h>
