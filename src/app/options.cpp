@@ -21,6 +21,12 @@ namespace boomdyn {
 
 namespace {
 
+// The bodies -boom_elements refines: planar and spatial ANCF beams.
+bool isBeam(const BodySpec &b)
+{
+  return b.type == BodySpec::Type::AncfBeam || b.type == BodySpec::Type::SpatialAncfBeam;
+}
+
 // Options of boomdyn read elsewhere than in this file, listed here so that
 // they are known to rejectUnknownOptions (their help comes with the solver).
 const char *const libraryOptions[] = {"-boom_jacobian_reuse", "-boom_jacobian_refresh_ratio", "-boom_jacobian_max_age",
@@ -183,7 +189,7 @@ PetscErrorCode readSceneOverrides(PetscOptionItems *PetscOptionsObject, Scene *s
   PetscCall(optionNumber(PetscOptionsObject, "-boom_elements", "Elements of every ANCF beam (0: the scene's)",
                          &elements, &all));
   for (BodySpec &b : scene->bodies) {
-    if (b.type != BodySpec::Type::AncfBeam) continue;
+    if (!isBeam(b)) continue;
     PetscInt n = all ? elements : b.elements;
     const std::string name = "-boom_elements_" + b.name, help = "Elements of the beam '" + b.name + "'";
     PetscCall(optionNumber(PetscOptionsObject, name.c_str(), help.c_str(), &n));
@@ -234,8 +240,8 @@ PetscErrorCode checkOverrides(const Scene &scene, const Overrides &set)
   PetscFunctionBeginUser;
   double elements = 0;
   for (const BodySpec &b : scene.bodies) {
-    elements += b.type == BodySpec::Type::AncfBeam ? b.elements : 1;
-    PetscCheck(b.type != BodySpec::Type::AncfBeam || (b.elements >= 1 && b.elements <= 10000000), comm,
+    elements += isBeam(b) ? b.elements : 1;
+    PetscCheck(!isBeam(b) || (b.elements >= 1 && b.elements <= 10000000), comm,
                PETSC_ERR_USER_INPUT, "-boom_elements: body '%s' needs between 1 and 1e7 elements (got %d)",
                b.name.c_str(), b.elements);
   }
