@@ -5,6 +5,7 @@
 // drives (C_q, the multiplier-weighted Hessian and gamma, body-ground and
 // body-body), point loads (fixed, follower, moments) and point masses with
 // rotary inertia.
+#include "spatial_test_frames.hpp"
 #include "boomdyn/euler_parameters.hpp"
 #include "boomdyn/spatial_ancf_beam.hpp"
 #include "boomdyn/spatial_joint.hpp"
@@ -18,18 +19,11 @@
 
 using namespace boomdyn;
 
+using spatial_test::axesOf;
+
 namespace {
 
 using RowMajor = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
-
-Mat3 axesOf(const Vec3 &x, const Vec3 &up)
-{
-  Mat3 R;
-  R.col(0) = x.normalized();
-  R.col(1) = (up - up.dot(R.col(0)) * R.col(0)).normalized();
-  R.col(2) = R.col(0).cross(R.col(1));
-  return R;
-}
 
 Mat3 someInertia()
 {

@@ -6,6 +6,7 @@
 // the pad force f and its derivatives f_q, f_v in contact on either side of
 // the clearance and inside it (f = 0); and the gap's continuity when the
 // contact point moves to the next element.
+#include "spatial_test_frames.hpp"
 #include "boomdyn/pad_contact.hpp"
 #include "boomdyn/spatial_rigid_body.hpp"
 #include "boomdyn/spatial_sliding_joint.hpp"
@@ -19,23 +20,10 @@
 using namespace boomdyn;
 namespace sb = boomdyn::spatial_beam;
 
+using spatial_test::axesOf;
+using spatial_test::unitSection;
+
 namespace {
-
-Mat3 axesOf(const Vec3 &x, const Vec3 &up)
-{
-  Mat3 R;
-  R.col(0) = x.normalized();
-  R.col(1) = (up - up.dot(R.col(0)) * R.col(0)).normalized();
-  R.col(2) = R.col(0).cross(R.col(1));
-  return R;
-}
-
-sb::Section unitSection()
-{
-  sb::Section s;
-  s.EA = 100, s.EIy = 1, s.EIz = 2, s.GJ = 0.5, s.rhoA = 1, s.rhoIp = 0.01;
-  return s;
-}
 
 // A 4-element beam of length 2 m along a general direction and a rigid
 // sleeve (coordinates 35..41: position, then Euler parameters).

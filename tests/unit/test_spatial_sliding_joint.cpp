@@ -5,6 +5,7 @@
 // multiplier-weighted Hessian and gamma) at random deformed and twisted
 // states, with s inside elements, on nodes and just past an element's end;
 // and the rows' continuity when the contact point moves to the next element.
+#include "spatial_test_frames.hpp"
 #include "boomdyn/spatial_beam_slack_frame.hpp"
 #include "boomdyn/slack_track.hpp"
 #include "boomdyn/spatial_rigid_body.hpp"
@@ -18,23 +19,10 @@
 using namespace boomdyn;
 namespace sb = boomdyn::spatial_beam;
 
+using spatial_test::axesOf;
+using spatial_test::unitSection;
+
 namespace {
-
-Mat3 axesOf(const Vec3 &x, const Vec3 &up)
-{
-  Mat3 R;
-  R.col(0) = x.normalized();
-  R.col(1) = (up - up.dot(R.col(0)) * R.col(0)).normalized();
-  R.col(2) = R.col(0).cross(R.col(1));
-  return R;
-}
-
-sb::Section unitSection()
-{
-  sb::Section s;
-  s.EA = 100, s.EIy = 1, s.EIz = 2, s.GJ = 0.5, s.rhoA = 1, s.rhoIp = 0.01;
-  return s;
-}
 
 // A 4-element beam of length 2 m along a general direction, and a slider:
 // a rigid sleeve (Euler parameters) or a second beam.
